@@ -1,0 +1,22 @@
+// Albedo = photo / illumination (thesis 2.4.2), per pixel, with the pixels
+// where the illumination is too small to divide by (deep shadow, grazing
+// light) or the geometry covers too little of the pixel filled from reliable
+// neighbours on the same surface.
+#pragma once
+
+#include "core/image.h"
+#include "render/gbuffer.h"
+#include "render/render_illumination.h"
+
+namespace relight {
+
+struct AlbedoImages {
+  Image albedo;           // per pixel, the surface's own albedo (not coverage-weighted)
+  Image albedo_coverage;  // albedo x coverage: 0 on the background, like albedo_gt.exr
+  Vec3 mean = Vec3::Constant(0.5f);  // mean over reliable pixels; the default for unseen surfaces
+  size_t filled = 0;      // pixels filled from neighbours or the mean
+};
+
+AlbedoImages recover_albedo(const Image& photo, const IlluminationImages& illumination, const GBuffer& gbuffer);
+
+}  // namespace relight

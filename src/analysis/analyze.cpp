@@ -1,0 +1,144 @@
+#include "analysis/analyze.h"
+
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "analysis/surface_albedo.h"
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+
+namespace relight {
+
+namespace fs = std::filesystem;
+
+GBuffer scene_gbuffer(const Scene& scene, const RayScene& rays, const AnalysisOptions& options) {
+  return GBuffer(scene.camera, rays, options.gbuffer_samples, options.seed, scene.path.string());
+}
+
+namespace {
+
+float mean_abs_change(const Image& a, const Image& b, const std::vector<float>& coverage) {
+  double sum = 0.0;
+  size_t n = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (coverage[i] > 0.0f) {
+      sum += (a.pixels[i] - b.pixels[i]).cwiseAbs().mean();
+      ++n;
+    }
+  return n ? float(sum / n) : 0.0f;
+}
+
+}  // namespace
+
+Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& options,
+                 Progress& progress) {
+  check_strategy(scene, options.strategy);
+  Analysis result;
+  result.options = options;
+  result.coverage = gbuffer.coverage();
+  const Lighting lighting = strategy_lighting(scene, options.strategy);
+  IntegratorOptions integrator_options;
+  integrator_options.max_bounces = options.max_bounces;
+
+  const WhiteAlbedo white;
+  const Integrator initial(rays, lighting, &white, integrator_options);
+  result.illumination = render_illumination(gbuffer, scene.camera, initial, options.paths_per_pixel, options.seed,
+                                            progress, "initial illumination");
+  result.albedo = recover_albedo(scene.photo, result.illumination, gbuffer);
+  result.iterations = 1;
+
+  for (int it = 0; options.interreflection && it < options.max_iterations; ++it) {
+    const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, result.albedo.albedo, result.albedo.mean);
+    const Integrator integrator(rays, lighting, &bounce_albedo, integrator_options);
+    IlluminationImages illum = render_illumination(gbuffer, scene.camera, integrator, options.paths_per_pixel,
+                                                   options.seed, progress,
+                                                   "interreflection " + std::to_string(it + 1));
+    AlbedoImages next = recover_albedo(scene.photo, illum, gbuffer);
+    const float change = mean_abs_change(next.albedo, result.albedo.albedo, result.coverage);
+    result.illumination = std::move(illum);
+    result.albedo = std::move(next);
+    ++result.iterations;
+    spdlog::info("interreflection pass {}: mean albedo change {:.4f}", it + 1, change);
+    if (change < options.tolerance) break;
+  }
+  return result;
+}
+
+void save_analysis(const fs::path& folder, const Analysis& a) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (!fs::is_directory(folder)) throw InputError(folder.string(), "", "cannot create the output folder");
+  const int w = a.albedo.albedo.width, h = a.albedo.albedo.height;
+  // The illumination as a user would look at it: the white-diffuse render,
+  // with the environment where the pixel sees no geometry.
+  Image illumination = a.illumination.surface;
+  for (size_t i = 0; i < illumination.size(); ++i)
+    if (a.coverage[i] == 0.0f) illumination.pixels[i] = a.illumination.background.pixels[i];
+  write_exr(folder / "illumination.exr", illumination);
+  write_exr(folder / "background.exr", a.illumination.background);
+  write_exr(folder / "albedo.exr", a.albedo.albedo_coverage);
+  write_exr(folder / "albedo_surface.exr", a.albedo.albedo);
+  write_png(folder / "albedo.png", a.albedo.albedo_coverage);
+  write_exr_scalar(folder / "mask.exr", a.coverage, w, h);
+
+  nlohmann::json j;
+  j["format"] = "relight-analysis/1";
+  j["strategy"] = to_string(a.options.strategy);
+  j["paths_per_pixel"] = a.options.paths_per_pixel;
+  j["gbuffer_samples"] = a.options.gbuffer_samples;
+  j["seed"] = a.options.seed;
+  j["max_bounces"] = a.options.max_bounces;
+  j["interreflection"] = a.options.interreflection;
+  j["iterations"] = a.iterations;
+  j["width"] = w;
+  j["height"] = h;
+  j["unseen_albedo"] = {a.albedo.mean.x(), a.albedo.mean.y(), a.albedo.mean.z()};
+  j["filled_pixels"] = a.albedo.filled;
+  write_text_atomically(folder / "analysis.json", j.dump(2) + "\n");
+}
+
+Analysis load_analysis(const fs::path& folder, const Scene& scene) {
+  const fs::path meta = folder / "analysis.json";
+  if (!fs::exists(meta)) throw InputError(meta.string(), "", "not found: run 'relight analyze' into this folder first");
+  nlohmann::json j;
+  try {
+    std::ifstream in(meta);
+    j = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    throw InputError(meta.string(), "", std::string("malformed analysis file (") + e.what() + ")");
+  }
+  Analysis a;
+  try {
+    a.options.strategy = parse_strategy(j.at("strategy").get<std::string>()).value();
+    a.options.paths_per_pixel = j.at("paths_per_pixel").get<int>();
+    a.options.gbuffer_samples = j.at("gbuffer_samples").get<int>();
+    a.options.seed = j.at("seed").get<uint64_t>();
+    a.options.max_bounces = j.at("max_bounces").get<int>();
+    a.options.interreflection = j.at("interreflection").get<bool>();
+    a.iterations = j.at("iterations").get<int>();
+    const auto& u = j.at("unseen_albedo");
+    a.albedo.mean = Vec3(u.at(0).get<float>(), u.at(1).get<float>(), u.at(2).get<float>());
+    if (j.at("width").get<int>() != scene.photo.width || j.at("height").get<int>() != scene.photo.height)
+      throw InputError(meta.string(), "/width", "the analysis was made for a photo of another size");
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(meta.string(), "", std::string("incomplete analysis file (") + e.what() + ")");
+  }
+  a.albedo.albedo = read_image(folder / "albedo_surface.exr");
+  a.albedo.albedo_coverage = read_image(folder / "albedo.exr");
+  a.illumination.background = read_image(folder / "background.exr");
+  int w, h;
+  a.coverage = read_scalar_image(folder / "mask.exr", w, h);
+  for (const Image* img : {&a.albedo.albedo, &a.albedo.albedo_coverage, &a.illumination.background})
+    if (img->width != scene.photo.width || img->height != scene.photo.height)
+      throw InputError(folder.string(), "", "an image of the analysis differs in size from the photo");
+  if (w != scene.photo.width || h != scene.photo.height)
+    throw InputError((folder / "mask.exr").string(), "", "differs in size from the photo");
+  return a;
+}
+
+}  // namespace relight

@@ -1,0 +1,55 @@
+#include "analysis/strategy.h"
+
+#include "analysis/probe_light_removal.h"
+#include "core/error.h"
+
+namespace relight {
+
+const char* to_string(Strategy s) {
+  switch (s) {
+    case Strategy::lights: return "lights";
+    case Strategy::probe: return "probe";
+    case Strategy::combined: return "combined";
+  }
+  return "?";
+}
+
+std::optional<Strategy> parse_strategy(const std::string& s) {
+  if (s == "lights") return Strategy::lights;
+  if (s == "probe") return Strategy::probe;
+  if (s == "combined") return Strategy::combined;
+  return std::nullopt;
+}
+
+Strategy default_strategy(const Scene& scene) {
+  if (scene.probes.empty()) return Strategy::lights;
+  return scene.lights.empty() ? Strategy::probe : Strategy::combined;
+}
+
+void check_strategy(const Scene& scene, Strategy strategy) {
+  if (strategy != Strategy::lights && scene.probes.empty())
+    throw InputError(scene.path.string(), "/probes",
+                     std::string("strategy '") + to_string(strategy) + "' needs at least one light probe");
+}
+
+Environment strategy_environment(const Scene& scene, Strategy strategy) {
+  switch (strategy) {
+    case Strategy::lights: return Environment::constant(scene.background);
+    case Strategy::probe: return Environment::from_probes(scene.probes);
+    case Strategy::combined: {
+      std::vector<Probe> cleaned;
+      for (const auto& p : scene.probes) cleaned.push_back(remove_lights_from_probe(p, scene.lights));
+      return Environment::from_probes(cleaned);
+    }
+  }
+  return Environment::constant(scene.background);
+}
+
+Lighting strategy_lighting(const Scene& scene, Strategy strategy) {
+  Lighting lighting;
+  if (strategy != Strategy::probe) lighting.lights = scene.lights;
+  lighting.environment = strategy_environment(scene, strategy);
+  return lighting;
+}
+
+}  // namespace relight

@@ -1,0 +1,50 @@
+// relight analyze: initial illumination, albedo, mask into a folder.
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include "cli/commands.h"
+#include "core/error.h"
+
+namespace relight::cli {
+
+void add_analyze_command(CLI::App& app, Action& action) {
+  struct Args {
+    std::string scene, out, strategy, interreflection = "on";
+    AnalysisOptions options;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("analyze", "recover the albedo: divide the photo by the simulated illumination");
+  cmd->add_option("scene", args->scene, "scene.json")->required();
+  cmd->add_option("-o,--out", args->out, "output folder (created)")->required();
+  cmd->add_option("--strategy", args->strategy,
+                  "initial illumination: lights (+ constant background), probe, or combined (lights + probes with "
+                  "the lights removed); default: combined where the scene has both")
+      ->check(CLI::IsMember({"lights", "probe", "combined"}));
+  cmd->add_option("--interreflection", args->interreflection,
+                  "on: iterate the albedo with coloured interreflection; off: white diffuse surfaces (the thesis)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  add_sampling_options(*cmd, args->options);
+  cmd->footer(
+      "Example:\n  relight analyze examples/room/scene.json -o out/room\n"
+      "writes out/room/{illumination.exr, albedo.exr, albedo.png, mask.exr, analysis.json}");
+  cmd->callback([&action, args] {
+    action = [args](Progress& progress) {
+      const auto start = std::chrono::steady_clock::now();
+      LoadedScene s = load_for_rendering(args->scene, args->options);
+      AnalysisOptions options = args->options;
+      options.strategy = args->strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args->strategy);
+      options.interreflection = args->interreflection == "on";
+      const Analysis analysis = analyze(s.scene, *s.rays, *s.gbuffer, options, progress);
+      save_analysis(args->out, analysis);
+      const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::printf("analysis (%s, %d spp, %d render%s) written to %s in %.1f s\n", to_string(options.strategy),
+                  options.paths_per_pixel, analysis.iterations, analysis.iterations > 1 ? "s" : "", args->out.c_str(),
+                  secs);
+    };
+  });
+}
+
+}  // namespace relight::cli

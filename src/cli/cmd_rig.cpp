@@ -1,0 +1,27 @@
+// relight rig: a rig.json holding the scene's own lights, to start a design from.
+#include <cstdio>
+
+#include "cli/commands.h"
+#include "io/scene_io.h"
+#include "relight/render_rig.h"
+
+namespace relight::cli {
+
+void add_rig_command(CLI::App& app, Action& action) {
+  struct Args {
+    std::string scene, out;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("rig", "write a rig.json with the scene's own lights, to edit");
+  cmd->add_option("scene", args->scene, "scene.json")->required();
+  cmd->add_option("-o,--out", args->out, "rig.json to write")->required();
+  cmd->footer("Example:\n  relight rig scene.json -o my_rig.json");
+  cmd->callback([&action, args] {
+    action = [args](Progress&) {
+      save_rig(args->out, rig_from_scene(load_scene(args->scene)));
+      std::printf("rig written to %s\n", args->out.c_str());
+    };
+  });
+}
+
+}  // namespace relight::cli

@@ -1,0 +1,39 @@
+// The relight command line: one file per subcommand, each registering itself
+// on the CLI11 app; run() parses, dispatches and maps errors to exit codes
+// (0 ok, 1 internal error, 2 bad input).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "analysis/analyze.h"
+#include "core/progress.h"
+#include "render/ray_scene.h"
+
+namespace relight::cli {
+
+// The action a parsed subcommand runs.
+using Action = std::function<void(Progress&)>;
+
+void add_analyze_command(CLI::App& app, Action& action);
+void add_render_command(CLI::App& app, Action& action);
+void add_rig_command(CLI::App& app, Action& action);
+void add_compare_command(CLI::App& app, Action& action);
+
+// A loaded scene with its ray-tracing structure and G-buffer.
+struct LoadedScene {
+  Scene scene;
+  std::unique_ptr<RayScene> rays;
+  std::unique_ptr<GBuffer> gbuffer;
+};
+LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options);
+
+// Options shared by analyze and render.
+void add_sampling_options(CLI::App& cmd, AnalysisOptions& options);
+
+int run(std::span<const std::string> args);
+
+}  // namespace relight::cli

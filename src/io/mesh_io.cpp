@@ -1,0 +1,81 @@
+#include "io/mesh_io.h"
+
+#include <spdlog/spdlog.h>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include "core/error.h"
+
+namespace relight {
+
+namespace fs = std::filesystem;
+
+size_t remove_degenerate_triangles(TriangleMesh& mesh) {
+  const size_t before = mesh.triangles.size();
+  std::erase_if(mesh.triangles, [&](const std::array<uint32_t, 3>& t) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return true;
+    const Vec3 e1 = mesh.positions[t[1]] - mesh.positions[t[0]];
+    const Vec3 e2 = mesh.positions[t[2]] - mesh.positions[t[0]];
+    const float scale = std::max(e1.squaredNorm(), e2.squaredNorm());
+    return !(e1.cross(e2).squaredNorm() > 1e-12f * scale * scale);
+  });
+  return before - mesh.triangles.size();
+}
+
+TriangleMesh load_mesh(const fs::path& path) {
+  const std::string name = path.string();
+  if (!fs::exists(path)) throw InputError(name, "", "file not found");
+  if (fs::is_directory(path)) throw InputError(name, "", "is a folder, expected a mesh file");
+
+  Assimp::Importer importer;
+  // Keep our own handling of degenerates (we report them); bake node
+  // transforms so the mesh is in the world frame.
+  const aiScene* ai = importer.ReadFile(name, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                                  aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+  if (!ai) throw InputError(name, "", std::string("not a readable mesh (") + importer.GetErrorString() + ")");
+
+  TriangleMesh mesh;
+  bool all_have_normals = true;
+  for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
+    const aiMesh* am = ai->mMeshes[m];
+    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    if (!am->HasNormals()) all_have_normals = false;
+  }
+  for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
+    const aiMesh* am = ai->mMeshes[m];
+    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    const uint32_t base = uint32_t(mesh.positions.size());
+    for (unsigned v = 0; v < am->mNumVertices; ++v) {
+      const aiVector3D& p = am->mVertices[v];
+      const Vec3 pos(p.x, p.y, p.z);
+      if (!is_finite(pos))
+        throw InputError(name, fmt::format("mesh {} vertex {}", m, v), "has a NaN or infinite coordinate");
+      mesh.positions.push_back(pos);
+      if (all_have_normals) {
+        const aiVector3D& n = am->mNormals[v];
+        Vec3 nn(n.x, n.y, n.z);
+        mesh.normals.push_back(is_finite(nn) && nn.squaredNorm() > 0 ? nn.normalized() : Vec3::Zero());
+      }
+    }
+    for (unsigned f = 0; f < am->mNumFaces; ++f) {
+      const aiFace& face = am->mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      mesh.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+    }
+  }
+  if (mesh.triangles.empty()) throw InputError(name, "", "the mesh has no triangles");
+  if (const size_t dropped = remove_degenerate_triangles(mesh))
+    spdlog::warn("{}: dropped {} degenerate (zero-area) triangles", name, dropped);
+  if (mesh.triangles.empty()) throw InputError(name, "", "every triangle of the mesh is degenerate (zero area)");
+  // A zero normal (from a bad file) disables smooth shading for the whole mesh.
+  for (const auto& n : mesh.normals)
+    if (n.isZero()) {
+      mesh.normals.clear();
+      break;
+    }
+  return mesh;
+}
+
+}  // namespace relight

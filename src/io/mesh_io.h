@@ -1,0 +1,19 @@
+// Scene geometry through Assimp (OBJ, PLY, glTF/GLB, FBX, ...): flattened to
+// one triangle mesh in the world frame, validated and cleaned.
+#pragma once
+
+#include <filesystem>
+
+#include "scene/triangle_mesh.h"
+
+namespace relight {
+
+// Loads every triangle of the file with node transforms applied. Throws
+// InputError for a missing/unreadable file, no triangles, or non-finite
+// vertices. Degenerate (zero-area) triangles are dropped with a warning.
+TriangleMesh load_mesh(const std::filesystem::path& path);
+
+// Removes zero-area triangles and ones with repeated vertices; returns how many.
+size_t remove_degenerate_triangles(TriangleMesh& mesh);
+
+}  // namespace relight

@@ -1,0 +1,226 @@
+#include "io/scene_io.h"
+
+#include <spdlog/spdlog.h>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "io/json_reader.h"
+#include "io/mesh_io.h"
+
+namespace relight {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+constexpr float kMaxPower = 1.0e9f;
+
+// A path from the JSON, relative to the JSON file's folder.
+fs::path resolve(const fs::path& json_file, const std::string& relative) {
+  const fs::path p(relative);
+  return p.is_absolute() ? p : json_file.parent_path() / p;
+}
+
+LightType parse_light_type(const JsonReader& r, const json& v, const std::string& ptr) {
+  const std::string t = r.string(v, ptr);
+  if (t == "point") return LightType::point;
+  if (t == "spot") return LightType::spot;
+  if (t == "area") return LightType::area;
+  if (t == "directional") return LightType::directional;
+  r.fail(ptr, "expected \"point\", \"spot\", \"area\" or \"directional\", found \"" + t + "\"");
+}
+
+Light parse_light(const JsonReader& r, const json& v, const std::string& ptr, size_t index) {
+  r.expect_object(v, ptr);
+  Light light;
+  light.type = parse_light_type(r, r.required(v, ptr, "type"), json_child(ptr, "type"));
+  auto key = [&](const char* k) { return json_child(ptr, k); };
+  light.name = std::string(to_string(light.type)) + " " + std::to_string(index);
+  if (auto* n = r.optional(v, "name")) light.name = r.string(*n, key("name"));
+  if (auto* c = r.optional(v, "color")) light.color = r.color(*c, key("color"));
+  if (auto* e = r.optional(v, "enabled")) light.enabled = r.boolean(*e, key("enabled"));
+
+  switch (light.type) {
+    case LightType::point:
+    case LightType::spot:
+      light.position = r.vec3(r.required(v, ptr, "position"), key("position"));
+      light.power = r.number_above(r.required(v, ptr, "power"), key("power"), 0.0f);
+      if (light.power > kMaxPower) r.fail(key("power"), "power is implausibly large (over 1e9 W)");
+      if (auto* rad = r.optional(v, "radius")) light.radius = r.number(*rad, key("radius"), 0.0f, 1.0e3f);
+      if (light.type == LightType::spot) {
+        light.direction = r.direction(r.required(v, ptr, "direction"), key("direction"));
+        light.spot_angle_deg = r.number(r.required(v, ptr, "spot_angle_deg"), key("spot_angle_deg"), 0.0f, 180.0f);
+        if (light.spot_angle_deg <= 0.0f) r.fail(key("spot_angle_deg"), "expected a cone angle in (0, 180]");
+        if (auto* b = r.optional(v, "blend")) light.blend = r.number(*b, key("blend"), 0.0f, 1.0f);
+        r.warn_unknown_keys(v, ptr, {"type", "name", "color", "enabled", "position", "power", "radius", "direction",
+                                     "spot_angle_deg", "blend"});
+      } else {
+        r.warn_unknown_keys(v, ptr, {"type", "name", "color", "enabled", "position", "power", "radius"});
+      }
+      break;
+    case LightType::area: {
+      light.position = r.vec3(r.required(v, ptr, "position"), key("position"));
+      light.direction = r.direction(r.required(v, ptr, "direction"), key("direction"));
+      light.up = r.direction(r.required(v, ptr, "up"), key("up"));
+      if (light.up.cross(light.direction).norm() < 1e-4f) r.fail(key("up"), "must not be parallel to direction");
+      const json& size = r.required(v, ptr, "size");
+      if (!size.is_array() || size.size() != 2) r.fail(key("size"), "expected [w, h] in metres");
+      light.size = Vec2(r.number_above(size[0], key("size") + "/0", 0.0f), r.number_above(size[1], key("size") + "/1", 0.0f));
+      light.power = r.number_above(r.required(v, ptr, "power"), key("power"), 0.0f);
+      if (light.power > kMaxPower) r.fail(key("power"), "power is implausibly large (over 1e9 W)");
+      r.warn_unknown_keys(v, ptr, {"type", "name", "color", "enabled", "position", "direction", "up", "size", "power"});
+      break;
+    }
+    case LightType::directional:
+      light.direction = r.direction(r.required(v, ptr, "direction"), key("direction"));
+      light.irradiance = r.number_above(r.required(v, ptr, "irradiance"), key("irradiance"), 0.0f);
+      if (light.irradiance > kMaxPower) r.fail(key("irradiance"), "irradiance is implausibly large");
+      if (auto* a = r.optional(v, "angle_deg")) light.angle_deg = r.number(*a, key("angle_deg"), 0.0f, 180.0f);
+      r.warn_unknown_keys(v, ptr, {"type", "name", "color", "enabled", "direction", "irradiance", "angle_deg"});
+      break;
+  }
+  return light;
+}
+
+std::vector<Light> parse_lights(const JsonReader& r, const json& root) {
+  std::vector<Light> lights;
+  const json* arr = r.optional(root, "lights");
+  if (!arr) return lights;
+  if (!arr->is_array()) r.fail("/lights", "expected an array of lights");
+  for (size_t i = 0; i < arr->size(); ++i) lights.push_back(parse_light(r, (*arr)[i], json_child("/lights", i), i));
+  return lights;
+}
+
+void expect_format(const JsonReader& r, const json& root, const char* expected) {
+  r.expect_object(root, "");
+  const std::string f = r.string(r.required(root, "", "format"), "/format");
+  if (f != expected) r.fail("/format", std::string("expected \"") + expected + "\", found \"" + f + "\"");
+}
+
+CameraSpec parse_camera(const JsonReader& r, const json& v) {
+  const std::string ptr = "/camera";
+  r.expect_object(v, ptr);
+  CameraSpec c;
+  c.position = r.vec3(r.required(v, ptr, "position"), ptr + "/position");
+  c.look_at = r.vec3(r.required(v, ptr, "look_at"), ptr + "/look_at");
+  c.up = r.direction(r.required(v, ptr, "up"), ptr + "/up");
+  c.vfov_deg = r.number(r.required(v, ptr, "vfov_deg"), ptr + "/vfov_deg", 0.0f, 179.0f);
+  if (c.vfov_deg <= 0.0f) r.fail(ptr + "/vfov_deg", "expected a field of view in (0, 179] degrees");
+  const Vec3 forward = c.look_at - c.position;
+  if (forward.norm() < 1e-6f) r.fail(ptr + "/look_at", "must differ from the camera position");
+  if (forward.normalized().cross(c.up).norm() < 1e-4f) r.fail(ptr + "/up", "must not be parallel to the view direction");
+  r.warn_unknown_keys(v, ptr, {"position", "look_at", "up", "vfov_deg"});
+  return c;
+}
+
+Probe parse_probe(const JsonReader& r, const json& v, const std::string& ptr, const fs::path& scene_path) {
+  r.expect_object(v, ptr);
+  Probe p;
+  p.path = resolve(scene_path, r.string(r.required(v, ptr, "image"), ptr + "/image")).string();
+  const std::string mapping = r.string(r.required(v, ptr, "mapping"), ptr + "/mapping");
+  if (mapping == "equirect") p.mapping = ProbeMapping::equirect;
+  else if (mapping == "mirrorball") p.mapping = ProbeMapping::mirrorball;
+  else r.fail(ptr + "/mapping", "expected \"equirect\" or \"mirrorball\", found \"" + mapping + "\"");
+  p.position = r.vec3(r.required(v, ptr, "position"), ptr + "/position");
+  p.forward = r.direction(r.required(v, ptr, "forward"), ptr + "/forward");
+  p.up = r.direction(r.required(v, ptr, "up"), ptr + "/up");
+  if (p.forward.cross(p.up).norm() < 1e-4f) r.fail(ptr + "/up", "must not be parallel to forward");
+  r.warn_unknown_keys(v, ptr, {"image", "mapping", "position", "forward", "up"});
+  p.image = read_image(p.path);
+  const int w = p.image.width, h = p.image.height;
+  if (p.mapping == ProbeMapping::equirect && w != 2 * h)
+    throw InputError(p.path, "", fmt::format("an equirect probe must be twice as wide as high, found {}x{}", w, h));
+  if (p.mapping == ProbeMapping::mirrorball && w != h)
+    throw InputError(p.path, "", fmt::format("a mirror-ball probe must be square, found {}x{}", w, h));
+  return p;
+}
+
+json light_to_json(const Light& l) {
+  json j;
+  j["name"] = l.name;
+  j["type"] = to_string(l.type);
+  auto v3 = [](const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); };
+  j["color"] = v3(l.color);
+  if (!l.enabled) j["enabled"] = false;
+  switch (l.type) {
+    case LightType::point:
+    case LightType::spot:
+      j["position"] = v3(l.position);
+      j["power"] = l.power;
+      if (l.radius > 0.0f) j["radius"] = l.radius;
+      if (l.type == LightType::spot) {
+        j["direction"] = v3(l.direction);
+        j["spot_angle_deg"] = l.spot_angle_deg;
+        j["blend"] = l.blend;
+      }
+      break;
+    case LightType::area:
+      j["position"] = v3(l.position);
+      j["direction"] = v3(l.direction);
+      j["up"] = v3(l.up);
+      j["size"] = json::array({l.size.x(), l.size.y()});
+      j["power"] = l.power;
+      break;
+    case LightType::directional:
+      j["direction"] = v3(l.direction);
+      j["irradiance"] = l.irradiance;
+      if (l.angle_deg > 0.0f) j["angle_deg"] = l.angle_deg;
+      break;
+  }
+  return j;
+}
+
+}  // namespace
+
+Scene load_scene(const fs::path& path) {
+  const JsonReader r(path.string());
+  const json root = JsonReader::parse_file(path);
+  expect_format(r, root, "relight-scene/1");
+  r.warn_unknown_keys(root, "", {"format", "photo", "geometry", "camera", "lights", "background", "probes"});
+
+  Scene scene;
+  scene.path = path;
+  // Validate all the JSON before the (slow) file loads.
+  const CameraSpec camera = parse_camera(r, r.required(root, "", "camera"));
+  scene.lights = parse_lights(r, root);
+  if (auto* bg = r.optional(root, "background")) scene.background = r.color(*bg, "/background");
+  scene.photo_path = resolve(path, r.string(r.required(root, "", "photo"), "/photo"));
+  scene.geometry_path = resolve(path, r.string(r.required(root, "", "geometry"), "/geometry"));
+  std::vector<std::pair<const json*, std::string>> probe_specs;
+  if (auto* probes = r.optional(root, "probes")) {
+    if (!probes->is_array()) r.fail("/probes", "expected an array of probes");
+    for (size_t i = 0; i < probes->size(); ++i) probe_specs.emplace_back(&(*probes)[i], json_child("/probes", i));
+  }
+
+  scene.photo = read_image(scene.photo_path);
+  scene.camera = Camera(camera, scene.photo.width, scene.photo.height);
+  scene.mesh = load_mesh(scene.geometry_path);
+  for (const auto& [spec, ptr] : probe_specs) scene.probes.push_back(parse_probe(r, *spec, ptr, path));
+  return scene;
+}
+
+Rig load_rig(const fs::path& path) {
+  const JsonReader r(path.string());
+  const json root = JsonReader::parse_file(path);
+  expect_format(r, root, "relight-rig/1");
+  r.warn_unknown_keys(root, "", {"format", "environment_scale", "lights"});
+  Rig rig;
+  if (auto* s = r.optional(root, "environment_scale")) rig.environment_scale = r.number(*s, "/environment_scale", 0.0f, 1.0e6f);
+  rig.lights = parse_lights(r, root);
+  return rig;
+}
+
+std::string rig_to_json(const Rig& rig) {
+  json j;
+  j["format"] = "relight-rig/1";
+  j["environment_scale"] = rig.environment_scale;
+  j["lights"] = json::array();
+  for (const auto& l : rig.lights) j["lights"].push_back(light_to_json(l));
+  return j.dump(2) + "\n";
+}
+
+void save_rig(const fs::path& path, const Rig& rig) { write_text_atomically(path, rig_to_json(rig)); }
+
+}  // namespace relight

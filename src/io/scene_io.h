@@ -1,0 +1,22 @@
+// scene.json and rig.json (FORMAT.md, version 1): loading with full
+// validation, and writing rigs.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace relight {
+
+// Reads scene.json with its photo, geometry and probes. Throws InputError
+// naming the file, the JSON pointer and what was expected.
+Scene load_scene(const std::filesystem::path& path);
+
+Rig load_rig(const std::filesystem::path& path);
+
+// The rig as rig.json text, and written atomically.
+std::string rig_to_json(const Rig& rig);
+void save_rig(const std::filesystem::path& path, const Rig& rig);
+
+}  // namespace relight

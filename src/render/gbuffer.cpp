@@ -1,0 +1,46 @@
+#include "render/gbuffer.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/sampling.h"
+
+namespace relight {
+
+GBuffer::GBuffer(const Camera& camera, const RayScene& scene, int samples_per_pixel, uint64_t seed,
+                 const std::string& scene_file)
+    : width_(camera.width()), height_(camera.height()), seed_(seed) {
+  grid_ = std::max(1, int(std::lround(std::sqrt(double(std::max(1, samples_per_pixel))))));
+  spp_ = grid_ * grid_;
+  central_ = (grid_ / 2) * grid_ + grid_ / 2;
+  samples_.resize(size_t(width_) * height_ * spp_);
+  coverage_.assign(size_t(width_) * height_, 0.0f);
+
+  tbb::parallel_for(0, height_, [&](int y) {
+    for (int x = 0; x < width_; ++x) {
+      int hits = 0;
+      for (int k = 0; k < spp_; ++k) {
+        GBufferSample& s = samples_[(size_t(y) * width_ + x) * spp_ + k];
+        const Vec2 pos = sample_position(x, y, k);
+        s.hit = scene.intersect(camera.position(), camera.ray_direction(pos.x(), pos.y()), s.surface);
+        hits += s.hit;
+      }
+      coverage_[size_t(y) * width_ + x] = float(hits) / float(spp_);
+    }
+  });
+  bool any = false;
+  for (float c : coverage_) any |= c > 0.0f;
+  if (!any) throw InputError(scene_file, "/camera", "the camera sees no geometry: check position, look_at and the mesh");
+}
+
+Vec2 GBuffer::sample_position(int x, int y, int k) const {
+  // Jittered grid: one sample in each cell of a grid x grid stratification.
+  Rng rng(seed_ ^ 0x6b75ull, size_t(y) * width_ + x, uint64_t(k));
+  const int gx = k % grid_, gy = k / grid_;
+  const Vec2 j = (grid_ == 1) ? Vec2(0.5f, 0.5f) : rng.uniform2();
+  return {x + (gx + j.x()) / grid_, y + (gy + j.y()) / grid_};
+}
+
+}  // namespace relight

@@ -1,0 +1,46 @@
+// GBuffer: what each pixel of the photo sees. Like a camera's pixel it
+// integrates over its area: each pixel holds a fixed number of sub-pixel
+// samples (stratified, jittered), each a surface point or the background.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/ray_scene.h"
+#include "scene/camera.h"
+
+namespace relight {
+
+struct GBufferSample {
+  SurfacePoint surface;  // valid when hit
+  bool hit = false;
+};
+
+class GBuffer {
+ public:
+  // Traces samples_per_pixel camera rays per pixel (rounded to a square
+  // grid). Throws InputError(scene_file, "/camera", ...) when the camera sees
+  // no geometry at all.
+  GBuffer(const Camera& camera, const RayScene& scene, int samples_per_pixel, uint64_t seed,
+          const std::string& scene_file);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int samples_per_pixel() const { return spp_; }
+  const GBufferSample& sample(int x, int y, int k) const { return samples_[(size_t(y) * width_ + x) * spp_ + k]; }
+  // The sub-pixel image position of sample k of pixel (x, y), and its ray.
+  Vec2 sample_position(int x, int y, int k) const;
+  // Fraction of the pixel's samples that see geometry.
+  float coverage(int x, int y) const { return coverage_[size_t(y) * width_ + x]; }
+  const std::vector<float>& coverage() const { return coverage_; }
+  // The surface seen through the centre-most sample (for per-pixel lookups).
+  const GBufferSample& central(int x, int y) const { return sample(x, y, central_); }
+
+ private:
+  int width_, height_, spp_, grid_, central_;
+  uint64_t seed_;
+  std::vector<GBufferSample> samples_;
+  std::vector<float> coverage_;
+};
+
+}  // namespace relight

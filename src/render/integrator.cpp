@@ -1,0 +1,82 @@
+#include "render/integrator.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace relight {
+
+Integrator::Integrator(const RayScene& scene, const Lighting& lighting, const SurfaceAlbedo* albedo,
+                       IntegratorOptions options)
+    : scene_(scene), lighting_(lighting), albedo_(albedo), options_(options) {
+  for (const auto& l : lighting_.lights)
+    if (l.enabled && !l.emission().isZero()) active_lights_.push_back(&l);
+}
+
+Vec3 Integrator::environment(const Vec3& origin, const Vec3& dir) const {
+  const Environment& env = lighting_.environment;
+  return env.radiance(env.probe_for(origin), dir);
+}
+
+Vec3 Integrator::direct(const SurfacePoint& p, const ProbeEnvironment* probe, Rng& rng) const {
+  Vec3 sum = Vec3::Zero();
+  for (const Light* light : active_lights_) {
+    const LightSample s = sample_light(*light, p.position, p.normal, rng.uniform2());
+    if (s.irradiance.isZero()) continue;
+    if (s.direction.dot(p.geometric_normal) <= 0.0f) continue;  // below the actual surface
+    const Vec3 origin = scene_.offset_origin(p, s.direction);
+    const float tmax = std::isfinite(s.distance) ? s.distance * (1.0f - 1e-4f) : s.distance;
+    if (!scene_.occluded(origin, s.direction, tmax)) sum += s.irradiance;
+  }
+  sum *= kInvPi;
+
+  const Environment& env = lighting_.environment;
+  if (!env.is_black()) {
+    Vec3 d;
+    float pdf;
+    const Vec2 u = rng.uniform2();
+    if (env.sample(probe, u, d, pdf)) {
+      const float cos_theta = p.normal.dot(d);
+      if (cos_theta > 0.0f && d.dot(p.geometric_normal) > 0.0f &&
+          !scene_.occluded(scene_.offset_origin(p, d), d, std::numeric_limits<float>::infinity())) {
+        const float weight = power_heuristic(pdf, cos_theta * kInvPi);
+        sum += env.radiance(probe, d) * (cos_theta * kInvPi / pdf * weight);
+      }
+    }
+  }
+  return sum;
+}
+
+Vec3 Integrator::illumination(const SurfacePoint& start, Rng& rng) const {
+  const Environment& env = lighting_.environment;
+  Vec3 result = Vec3::Zero();
+  Vec3 throughput = Vec3::Ones();
+  SurfacePoint p = start;
+  for (int bounce = 0;; ++bounce) {
+    const ProbeEnvironment* probe = env.uses_probes() ? env.probe_for(p.position) : nullptr;
+    result += throughput.cwiseProduct(direct(p, probe, rng));
+
+    // Continue the path by a cosine-weighted bounce; its estimator weight
+    // (albedo x cos/pi / pdf) is just the albedo.
+    const Vec3 d = to_world(sample_cosine_hemisphere(rng.uniform2()), p.normal);
+    if (d.dot(p.geometric_normal) <= 0.0f) break;
+    SurfacePoint next;
+    if (!scene_.intersect(scene_.offset_origin(p, d), d, next)) {
+      if (!env.is_black()) {
+        const float cos_pdf = p.normal.dot(d) * kInvPi;
+        result += throughput.cwiseProduct(env.radiance(probe, d)) * power_heuristic(cos_pdf, env.pdf(probe, d));
+      }
+      break;
+    }
+    if (bounce >= options_.max_bounces) break;
+    throughput = throughput.cwiseProduct(albedo_ ? albedo_->at(next) : Vec3::Ones());
+    if (bounce + 1 >= options_.roulette_after) {
+      const float q = std::min(0.95f, throughput.maxCoeff());
+      if (q <= 0.0f || rng.uniform() >= q) break;
+      throughput /= q;
+    }
+    p = next;
+  }
+  return result;
+}
+
+}  // namespace relight

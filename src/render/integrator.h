@@ -1,0 +1,65 @@
+// Integrator: the light arriving at a diffuse surface point — direct light
+// from every light (next-event estimation with shadow rays), the environment
+// (importance-sampled, multiple importance sampling with the cosine lobe), and
+// multi-bounce diffuse interreflection (path tracing) with a white or a given
+// albedo on the surfaces light bounces off.
+#pragma once
+
+#include <vector>
+
+#include "core/sampling.h"
+#include "render/ray_scene.h"
+#include "scene/environment.h"
+#include "scene/light.h"
+
+namespace relight {
+
+// The diffuse albedo of scene surfaces that light bounces off.
+class SurfaceAlbedo {
+ public:
+  virtual ~SurfaceAlbedo() = default;
+  virtual Vec3 at(const SurfacePoint& p) const = 0;
+};
+
+// The thesis's assumption for the initial illumination: every surface white.
+class WhiteAlbedo final : public SurfaceAlbedo {
+ public:
+  Vec3 at(const SurfacePoint&) const override { return Vec3::Ones(); }
+};
+
+// What lights the scene in one render: the lights and the environment.
+struct Lighting {
+  std::vector<Light> lights;  // disabled lights are skipped
+  Environment environment = Environment::constant(Vec3::Zero());
+};
+
+struct IntegratorOptions {
+  int max_bounces = 4;  // diffuse bounces after the first surface (0: direct light only)
+  int roulette_after = 2;  // Russian roulette from this bounce on
+};
+
+class Integrator {
+ public:
+  // albedo: the albedo of surfaces reached by bounces (nullptr: white).
+  Integrator(const RayScene& scene, const Lighting& lighting, const SurfaceAlbedo* albedo,
+             IntegratorOptions options = {});
+
+  // The radiance a white Lambertian surface at p would reflect: the
+  // irradiance at p divided by pi. One random path; average many.
+  Vec3 illumination(const SurfacePoint& p, Rng& rng) const;
+
+  // Environment radiance seen along a camera ray from `origin`.
+  Vec3 environment(const Vec3& origin, const Vec3& dir) const;
+
+ private:
+  // Direct light (lights + environment sample) reflected by a white surface at p.
+  Vec3 direct(const SurfacePoint& p, const ProbeEnvironment* probe, Rng& rng) const;
+
+  const RayScene& scene_;
+  const Lighting& lighting_;
+  const SurfaceAlbedo* albedo_;
+  IntegratorOptions options_;
+  std::vector<const Light*> active_lights_;
+};
+
+}  // namespace relight

@@ -1,0 +1,107 @@
+// Every Embree call of the program lives in this file.
+#include "render/ray_scene.h"
+
+#include <embree3/rtcore.h>
+#include <spdlog/spdlog.h>
+
+#include <stdexcept>
+
+namespace relight {
+
+struct RayScene::Embree {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  ~Embree() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+namespace {
+void embree_error(void*, RTCError code, const char* message) {
+  spdlog::error("Embree error {}: {}", int(code), message ? message : "");
+}
+}  // namespace
+
+RayScene::RayScene(const TriangleMesh& mesh) : mesh_(mesh), embree_(std::make_unique<Embree>()) {
+  embree_->device = rtcNewDevice(nullptr);
+  if (!embree_->device) throw std::runtime_error("Embree: cannot create a device");
+  rtcSetDeviceErrorFunction(embree_->device, embree_error, nullptr);
+
+  embree_->scene = rtcNewScene(embree_->device);
+  rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  // Embree reads vertices as float3 but may load 16 bytes: the buffer it
+  // allocates itself is padded for that.
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), mesh.positions.size()));
+  for (size_t i = 0; i < mesh.positions.size(); ++i)
+    for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.positions[i][c];
+  auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(uint32_t), mesh.triangles.size()));
+  for (size_t i = 0; i < mesh.triangles.size(); ++i)
+    for (int c = 0; c < 3; ++c) indices[3 * i + c] = mesh.triangles[i][c];
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(embree_->scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(embree_->scene);
+
+  const auto box = mesh.bounds();
+  epsilon_ = std::max(1e-5f, 1e-5f * (box.max() - box.min()).maxCoeff());
+}
+
+RayScene::~RayScene() = default;
+
+bool RayScene::intersect(const Vec3& origin, const Vec3& dir, SurfacePoint& hit, float tmax) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray.org_x = origin.x(), rh.ray.org_y = origin.y(), rh.ray.org_z = origin.z();
+  rh.ray.dir_x = dir.x(), rh.ray.dir_y = dir.y(), rh.ray.dir_z = dir.z();
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = tmax;
+  rh.ray.mask = ~0u;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(embree_->scene, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+
+  hit.prim = rh.hit.primID;
+  hit.distance = rh.ray.tfar;
+  hit.position = origin + dir * rh.ray.tfar;
+  Vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  ng.normalize();
+  if (ng.dot(dir) > 0.0f) ng = -ng;  // face the ray's origin
+  hit.geometric_normal = ng;
+  hit.normal = ng;
+  if (mesh_.has_normals()) {
+    const auto& t = mesh_.triangles[hit.prim];
+    const float u = rh.hit.u, v = rh.hit.v;
+    Vec3 ns = (1.0f - u - v) * mesh_.normals[t[0]] + u * mesh_.normals[t[1]] + v * mesh_.normals[t[2]];
+    if (ns.squaredNorm() > 0.0f) {
+      ns.normalize();
+      hit.normal = ns.dot(ng) < 0.0f ? Vec3(-ns) : ns;
+    }
+  }
+  return true;
+}
+
+bool RayScene::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray{};
+  ray.org_x = origin.x(), ray.org_y = origin.y(), ray.org_z = origin.z();
+  ray.dir_x = dir.x(), ray.dir_y = dir.y(), ray.dir_z = dir.z();
+  ray.tnear = 0.0f;
+  ray.tfar = tmax;
+  ray.mask = ~0u;
+  rtcOccluded1(embree_->scene, &context, &ray);
+  return ray.tfar < 0.0f;
+}
+
+Vec3 RayScene::offset_origin(const SurfacePoint& p, const Vec3& towards) const {
+  const float scale = epsilon_ + 1e-5f * p.position.cwiseAbs().maxCoeff();
+  const Vec3& ng = p.geometric_normal;
+  return p.position + (ng.dot(towards) >= 0.0f ? scale : -scale) * ng;
+}
+
+}  // namespace relight

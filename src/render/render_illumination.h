@@ -1,0 +1,24 @@
+// Renders the illumination of every pixel of a G-buffer: the mean, over the
+// pixel's samples that see geometry, of the light a white diffuse surface
+// there would reflect; and the mean environment radiance over those that see
+// the background. Multithreaded, deterministic for a seed.
+#pragma once
+
+#include "core/image.h"
+#include "core/progress.h"
+#include "render/gbuffer.h"
+#include "render/integrator.h"
+
+namespace relight {
+
+struct IlluminationImages {
+  Image surface;     // mean illumination over the geometry samples (0 where none)
+  Image background;  // mean environment radiance over the background samples (0 where none)
+};
+
+// paths_per_pixel paths per pixel, spread evenly over its G-buffer samples.
+IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
+                                       int paths_per_pixel, uint64_t seed, Progress& progress,
+                                       const std::string& label = "illumination");
+
+}  // namespace relight

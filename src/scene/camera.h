@@ -1,0 +1,43 @@
+// Camera: FORMAT.md's pinhole camera, bound to the photo's size. Maps pixel
+// positions to rays and world points back to pixels.
+#pragma once
+
+#include <optional>
+
+#include "core/vec.h"
+
+namespace relight {
+
+struct CameraSpec {
+  Vec3 position = Vec3::Zero();
+  Vec3 look_at = Vec3(0, 1, 0);
+  Vec3 up = Vec3(0, 0, 1);
+  float vfov_deg = 40.0f;
+};
+
+class Camera {
+ public:
+  Camera() = default;
+  Camera(const CameraSpec& spec, int width, int height);
+
+  const CameraSpec& spec() const { return spec_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const Vec3& position() const { return spec_.position; }
+  const Vec3& forward() const { return forward_; }
+
+  // Unit ray direction through the continuous image position (x, y) in pixels,
+  // (0,0) the top-left corner; the centre of pixel (c, r) is (c+0.5, r+0.5).
+  Vec3 ray_direction(float x, float y) const;
+  // The continuous image position of a world point, or nothing if it is
+  // behind the camera.
+  std::optional<Vec2> project(const Vec3& p) const;
+
+ private:
+  CameraSpec spec_;
+  int width_ = 0, height_ = 0;
+  Vec3 forward_, right_, up_;
+  float tan_half_ = 0.0f, aspect_ = 1.0f;
+};
+
+}  // namespace relight

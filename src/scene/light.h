@@ -1,0 +1,51 @@
+// Light: the four light types of FORMAT.md with exactly its radiometry
+// (Blender Cycles 3.x units), and the sampling of the irradiance a light
+// delivers to a surface point.
+#pragma once
+
+#include <string>
+
+#include "core/vec.h"
+
+namespace relight {
+
+enum class LightType { point, spot, area, directional };
+
+const char* to_string(LightType type);
+
+struct Light {
+  LightType type = LightType::point;
+  std::string name;
+  Vec3 color = Vec3::Ones();
+  bool enabled = true;
+  Vec3 position = Vec3::Zero();
+  Vec3 direction = Vec3(0, 0, -1);  // spot/area: where it points; sun: the way light travels
+  Vec3 up = Vec3(0, 0, 1);          // area: orients the h side
+  float power = 0.0f;               // W (point, spot, area)
+  float irradiance = 0.0f;          // W/m^2 (directional)
+  float radius = 0.0f;              // m (point, spot)
+  float spot_angle_deg = 45.0f;     // full cone angle
+  float blend = 0.0f;
+  Vec2 size = Vec2(1, 1);           // m (area)
+  float angle_deg = 0.0f;           // angular diameter (directional)
+
+  // The light's emission scale: color x power (or x irradiance).
+  Vec3 emission() const { return color * (type == LightType::directional ? irradiance : power); }
+};
+
+// One sample of a light as seen from a surface point.
+struct LightSample {
+  Vec3 direction;      // unit, from the surface point towards the light
+  float distance;      // to the sampled point on the light (infinity for the sun)
+  Vec3 irradiance;     // unbiased estimate of the light's irradiance at the point, unoccluded
+};
+
+// Samples the light from point p with unit normal n; u in [0,1)^2. The
+// irradiance is zero when the light is behind the surface or outside a cone.
+LightSample sample_light(const Light& light, const Vec3& p, const Vec3& n, const Vec2& u);
+
+// Spot cone factor c*s of FORMAT.md for the cosine c between the spot
+// direction and the direction from the light to the point.
+float spot_factor(const Light& light, float cos_theta);
+
+}  // namespace relight

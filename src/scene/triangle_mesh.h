@@ -1,0 +1,26 @@
+// TriangleMesh: the scene geometry as loaded (world frame, metres), with
+// optional per-vertex shading normals (smooth-shaded spheres keep them).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/vec.h"
+
+namespace relight {
+
+struct TriangleMesh {
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;  // empty, or one per position
+  std::vector<std::array<uint32_t, 3>> triangles;
+
+  bool has_normals() const { return !normals.empty(); }
+  Eigen::AlignedBox3f bounds() const {
+    Eigen::AlignedBox3f box;
+    for (const auto& p : positions) box.extend(p);
+    return box;
+  }
+};
+
+}  // namespace relight
