@@ -18,6 +18,14 @@ GBuffer scene_gbuffer(const Scene& scene, const RayScene& rays, const AnalysisOp
   return GBuffer(scene.camera, rays, options.gbuffer_samples, options.seed, scene.path.string());
 }
 
+IlluminationOptions illumination_options(const AnalysisOptions& options) {
+  IlluminationOptions o;
+  o.paths_per_pixel = options.paths_per_pixel;
+  o.seed = options.seed;
+  o.denoise = options.denoise;
+  return o;
+}
+
 namespace {
 
 float mean_abs_change(const Image& a, const Image& b, const std::vector<float>& coverage) {
@@ -45,7 +53,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
 
   const WhiteAlbedo white;
   const Integrator initial(rays, lighting, &white, integrator_options);
-  result.illumination = render_illumination(gbuffer, scene.camera, initial, options.paths_per_pixel, options.seed,
+  result.illumination = render_illumination(gbuffer, scene.camera, initial, illumination_options(options),
                                             progress, "initial illumination");
   result.albedo = recover_albedo(scene.photo, result.illumination, gbuffer);
   result.iterations = 1;
@@ -53,8 +61,8 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   for (int it = 0; options.interreflection && it < options.max_iterations; ++it) {
     const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, result.albedo.albedo, result.albedo.mean);
     const Integrator integrator(rays, lighting, &bounce_albedo, integrator_options);
-    IlluminationImages illum = render_illumination(gbuffer, scene.camera, integrator, options.paths_per_pixel,
-                                                   options.seed, progress,
+    IlluminationImages illum = render_illumination(gbuffer, scene.camera, integrator,
+                                                   illumination_options(options), progress,
                                                    "interreflection " + std::to_string(it + 1));
     AlbedoImages next = recover_albedo(scene.photo, illum, gbuffer);
     const float change = mean_abs_change(next.albedo, result.albedo.albedo, result.coverage);
@@ -92,6 +100,7 @@ void save_analysis(const fs::path& folder, const Analysis& a) {
   j["seed"] = a.options.seed;
   j["max_bounces"] = a.options.max_bounces;
   j["interreflection"] = a.options.interreflection;
+  j["denoise"] = a.options.denoise;
   j["iterations"] = a.iterations;
   j["width"] = w;
   j["height"] = h;
@@ -118,6 +127,7 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
     a.options.seed = j.at("seed").get<uint64_t>();
     a.options.max_bounces = j.at("max_bounces").get<int>();
     a.options.interreflection = j.at("interreflection").get<bool>();
+    a.options.denoise = j.at("denoise").get<bool>();
     a.iterations = j.at("iterations").get<int>();
     const auto& u = j.at("unseen_albedo");
     a.albedo.mean = Vec3(u.at(0).get<float>(), u.at(1).get<float>(), u.at(2).get<float>());

@@ -22,9 +22,13 @@ struct AnalysisOptions {
   uint64_t seed = 1;
   int max_bounces = 4;
   bool interreflection = true;
+  bool denoise = true;         // filter the environment + interreflection part of each render
   int max_iterations = 4;      // interreflection re-renders at most
   float tolerance = 0.005f;    // stop when the mean albedo change is below this
 };
+
+// The render settings of an analysis, shared by every later render of it.
+IlluminationOptions illumination_options(const AnalysisOptions& options);
 
 struct Analysis {
   AnalysisOptions options;

@@ -17,8 +17,10 @@ Image render_rig(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   const Integrator integrator(rays, lighting, &bounce_albedo, integrator_options);
   // The analysis's seed: the noise of the new illumination then follows that
   // of the analysis, and an unchanged rig gives back the photo.
-  const IlluminationImages light = render_illumination(gbuffer, scene.camera, integrator, options.paths_per_pixel,
-                                                       analysis.options.seed, progress, "new illumination");
+  IlluminationOptions illumination = illumination_options(analysis.options);
+  illumination.paths_per_pixel = options.paths_per_pixel;
+  const IlluminationImages light =
+      render_illumination(gbuffer, scene.camera, integrator, illumination, progress, "new illumination");
 
   Image out(scene.photo.width, scene.photo.height);
   for (size_t i = 0; i < out.size(); ++i) {

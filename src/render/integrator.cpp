@@ -17,7 +17,7 @@ Vec3 Integrator::environment(const Vec3& origin, const Vec3& dir) const {
   return env.radiance(env.probe_for(origin), dir);
 }
 
-Vec3 Integrator::direct(const SurfacePoint& p, const ProbeEnvironment* probe, Rng& rng) const {
+Vec3 Integrator::from_lights(const SurfacePoint& p, Rng& rng) const {
   Vec3 sum = Vec3::Zero();
   for (const Light* light : active_lights_) {
     const LightSample s = sample_light(*light, p.position, p.normal, rng.uniform2());
@@ -27,8 +27,11 @@ Vec3 Integrator::direct(const SurfacePoint& p, const ProbeEnvironment* probe, Rn
     const float tmax = std::isfinite(s.distance) ? s.distance * (1.0f - 1e-4f) : s.distance;
     if (!scene_.occluded(origin, s.direction, tmax)) sum += s.irradiance;
   }
-  sum *= kInvPi;
+  return sum * kInvPi;
+}
 
+Vec3 Integrator::from_environment(const SurfacePoint& p, const ProbeEnvironment* probe, Rng& rng) const {
+  Vec3 sum = Vec3::Zero();
   const Environment& env = lighting_.environment;
   if (!env.is_black()) {
     Vec3 d;
@@ -46,14 +49,17 @@ Vec3 Integrator::direct(const SurfacePoint& p, const ProbeEnvironment* probe, Rn
   return sum;
 }
 
-Vec3 Integrator::illumination(const SurfacePoint& start, Rng& rng) const {
+void Integrator::illumination(const SurfacePoint& start, Rng& rng, Vec3& direct, Vec3& indirect) const {
   const Environment& env = lighting_.environment;
-  Vec3 result = Vec3::Zero();
+  direct = from_lights(start, rng);
+  Vec3& result = indirect;
+  result = Vec3::Zero();
   Vec3 throughput = Vec3::Ones();
   SurfacePoint p = start;
   for (int bounce = 0;; ++bounce) {
     const ProbeEnvironment* probe = env.uses_probes() ? env.probe_for(p.position) : nullptr;
-    result += throughput.cwiseProduct(direct(p, probe, rng));
+    if (bounce > 0) result += throughput.cwiseProduct(from_lights(p, rng));
+    result += throughput.cwiseProduct(from_environment(p, probe, rng));
 
     // Continue the path by a cosine-weighted bounce; its estimator weight
     // (albedo x cos/pi / pdf) is just the albedo.
@@ -76,7 +82,6 @@ Vec3 Integrator::illumination(const SurfacePoint& start, Rng& rng) const {
     }
     p = next;
   }
-  return result;
 }
 
 }  // namespace relight

@@ -46,14 +46,23 @@ class Integrator {
 
   // The radiance a white Lambertian surface at p would reflect: the
   // irradiance at p divided by pi. One random path; average many.
-  Vec3 illumination(const SurfacePoint& p, Rng& rng) const;
+  // `direct` gets the part from the lights straight to p (sharp shadows,
+  // little noise), `indirect` the environment and all interreflection (smooth,
+  // noisy: the part worth denoising).
+  void illumination(const SurfacePoint& p, Rng& rng, Vec3& direct, Vec3& indirect) const;
+  Vec3 illumination(const SurfacePoint& p, Rng& rng) const {
+    Vec3 d, i;
+    illumination(p, rng, d, i);
+    return d + i;
+  }
 
   // Environment radiance seen along a camera ray from `origin`.
   Vec3 environment(const Vec3& origin, const Vec3& dir) const;
 
  private:
-  // Direct light (lights + environment sample) reflected by a white surface at p.
-  Vec3 direct(const SurfacePoint& p, const ProbeEnvironment* probe, Rng& rng) const;
+  // Light from the lights, and one environment sample, reflected by a white surface at p.
+  Vec3 from_lights(const SurfacePoint& p, Rng& rng) const;
+  Vec3 from_environment(const SurfacePoint& p, const ProbeEnvironment* probe, Rng& rng) const;
 
   const RayScene& scene_;
   const Lighting& lighting_;

@@ -6,6 +6,7 @@
 
 #include "core/image.h"
 #include "core/progress.h"
+#include "render/denoise.h"
 #include "render/gbuffer.h"
 #include "render/integrator.h"
 
@@ -16,9 +17,14 @@ struct IlluminationImages {
   Image background;  // mean environment radiance over the background samples (0 where none)
 };
 
-// paths_per_pixel paths per pixel, spread evenly over its G-buffer samples.
+struct IlluminationOptions {
+  int paths_per_pixel = 64;  // spread evenly over the pixel's G-buffer samples
+  uint64_t seed = 1;
+  bool denoise = true;       // filter the environment + interreflection part
+};
+
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
-                                       int paths_per_pixel, uint64_t seed, Progress& progress,
+                                       const IlluminationOptions& options, Progress& progress,
                                        const std::string& label = "illumination");
 
 }  // namespace relight

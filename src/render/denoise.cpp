@@ -1,0 +1,59 @@
+#include "render/denoise.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+namespace relight {
+
+Image denoise_illumination(const Image& noisy, std::vector<float> variance, const GBuffer& g,
+                           const DenoiseOptions& options) {
+  const int w = noisy.width, h = noisy.height;
+  static constexpr float kKernel[3] = {3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f};  // B3 spline, |offset| 0, 1, 2
+  Image current = noisy, next(w, h);
+  std::vector<float> next_variance(variance.size());
+
+  for (int pass = 0; pass < options.passes; ++pass) {
+    const int step = 1 << pass;
+    tbb::parallel_for(0, h, [&](int y) {
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        const GBufferSample& p = g.central(x, y);
+        if (!p.hit) {
+          next.pixels[i] = current.pixels[i];
+          next_variance[i] = variance[i];
+          continue;
+        }
+        const float lum_p = luminance(current.pixels[i]);
+        const float lum_scale = options.luminance_sigma * std::sqrt(std::max(variance[i], 0.0f)) + 1e-6f;
+        const float plane_scale = options.plane_sigma * p.surface.distance;
+        Vec3 sum = Vec3::Zero();
+        float weight_sum = 0.0f, variance_sum = 0.0f;
+        for (int dy = -2; dy <= 2; ++dy)
+          for (int dx = -2; dx <= 2; ++dx) {
+            const int qx = x + dx * step, qy = y + dy * step;
+            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+            const GBufferSample& q = g.central(qx, qy);
+            if (!q.hit) continue;
+            const size_t j = size_t(qy) * w + qx;
+            const float n_dot = std::max(0.0f, p.surface.normal.dot(q.surface.normal));
+            const float plane = std::abs(p.surface.geometric_normal.dot(q.surface.position - p.surface.position));
+            const float lum_diff = std::abs(luminance(current.pixels[j]) - lum_p);
+            const float weight = kKernel[std::abs(dx)] * kKernel[std::abs(dy)] *
+                                 std::pow(n_dot, options.normal_power) * std::exp(-plane / plane_scale) *
+                                 std::exp(-lum_diff / lum_scale);
+            sum += weight * current.pixels[j];
+            weight_sum += weight;
+            variance_sum += weight * weight * variance[j];
+          }
+        next.pixels[i] = weight_sum > 0.0f ? Vec3(sum / weight_sum) : current.pixels[i];
+        next_variance[i] = weight_sum > 0.0f ? variance_sum / (weight_sum * weight_sum) : variance[i];
+      }
+    });
+    std::swap(current, next);
+    std::swap(variance, next_variance);
+  }
+  return current;
+}
+
+}  // namespace relight
