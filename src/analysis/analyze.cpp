@@ -58,14 +58,19 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   result.albedo = recover_albedo(scene.photo, result.illumination, gbuffer);
   result.iterations = 1;
 
+  // The recovered albedo overshoots and undershoots in turn (too little
+  // bounce light makes it too bright, which makes too much bounce light), so
+  // each render bounces light off the mean of the last two albedos.
+  Image bounce = result.albedo.albedo;
   for (int it = 0; options.interreflection && it < options.max_iterations; ++it) {
-    const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, result.albedo.albedo, result.albedo.mean);
+    const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, bounce, result.albedo.mean);
     const Integrator integrator(rays, lighting, &bounce_albedo, integrator_options);
     IlluminationImages illum = render_illumination(gbuffer, scene.camera, integrator,
                                                    illumination_options(options), progress,
                                                    "interreflection " + std::to_string(it + 1));
     AlbedoImages next = recover_albedo(scene.photo, illum, gbuffer);
-    const float change = mean_abs_change(next.albedo, result.albedo.albedo, result.coverage);
+    const float change = mean_abs_change(next.albedo, bounce, result.coverage);
+    for (size_t i = 0; i < bounce.size(); ++i) bounce.pixels[i] = 0.5f * (bounce.pixels[i] + next.albedo.pixels[i]);
     result.illumination = std::move(illum);
     result.albedo = std::move(next);
     ++result.iterations;

@@ -107,8 +107,8 @@ std::vector<float> read_scalar_image(const fs::path& path, int& width, int& heig
   return out;
 }
 
-void write_exr(const fs::path& path, const Image& image) {
-  ImageSpec spec(image.width, image.height, 3, TypeDesc::FLOAT);
+void write_exr(const fs::path& path, const Image& image, ExrPrecision precision) {
+  ImageSpec spec(image.width, image.height, 3, precision == ExrPrecision::half ? TypeDesc::HALF : TypeDesc::FLOAT);
   spec.channelnames = {"R", "G", "B"};
   spec.attribute("compression", "zip");
   write_pixels(path, spec, image.pixels.data(), TypeDesc::FLOAT);

@@ -17,7 +17,10 @@ Image read_image(const std::filesystem::path& path);
 // image, e.g. a mask.
 std::vector<float> read_scalar_image(const std::filesystem::path& path, int& width, int& height);
 
-void write_exr(const std::filesystem::path& path, const Image& image);
+// Half floats (16-bit) are enough for photos and halve the file; the default
+// keeps full 32-bit floats.
+enum class ExrPrecision { full, half };
+void write_exr(const std::filesystem::path& path, const Image& image, ExrPrecision precision = ExrPrecision::full);
 void write_exr_scalar(const std::filesystem::path& path, const std::vector<float>& values, int width, int height);
 // 8-bit sRGB: the linear values times 2^exposure, clipped to [0,1], encoded.
 void write_png(const std::filesystem::path& path, const Image& image, float exposure_stops = 0.0f);

@@ -7,6 +7,7 @@
 #include <assimp/scene.h>
 
 #include "core/error.h"
+#include "io/atomic_file.h"
 
 namespace relight {
 
@@ -22,6 +23,19 @@ size_t remove_degenerate_triangles(TriangleMesh& mesh) {
     return !(e1.cross(e2).squaredNorm() > 1e-12f * scale * scale);
   });
   return before - mesh.triangles.size();
+}
+
+void save_obj(const fs::path& path, const TriangleMesh& mesh) {
+  std::string text = "# written by relight\n";
+  for (const auto& p : mesh.positions) text += fmt::format("v {:.6g} {:.6g} {:.6g}\n", p.x(), p.y(), p.z());
+  for (const auto& n : mesh.normals) text += fmt::format("vn {:.6g} {:.6g} {:.6g}\n", n.x(), n.y(), n.z());
+  for (const auto& t : mesh.triangles) {
+    if (mesh.has_normals())
+      text += fmt::format("f {0}//{0} {1}//{1} {2}//{2}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    else
+      text += fmt::format("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  }
+  write_text_atomically(path, text);
 }
 
 TriangleMesh load_mesh(const fs::path& path) {

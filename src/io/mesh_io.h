@@ -13,6 +13,9 @@ namespace relight {
 // vertices. Degenerate (zero-area) triangles are dropped with a warning.
 TriangleMesh load_mesh(const std::filesystem::path& path);
 
+// Writes the mesh as Wavefront OBJ (with normals when it has them), atomically.
+void save_obj(const std::filesystem::path& path, const TriangleMesh& mesh);
+
 // Removes zero-area triangles and ones with repeated vertices; returns how many.
 size_t remove_degenerate_triangles(TriangleMesh& mesh);
 

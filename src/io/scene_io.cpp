@@ -212,6 +212,30 @@ Rig load_rig(const fs::path& path) {
   return rig;
 }
 
+std::string scene_to_json(const Scene& scene, const fs::path& folder) {
+  auto v3 = [](const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); };
+  auto relative = [&](const fs::path& p) { return p.lexically_relative(folder).generic_string(); };
+  json j;
+  j["format"] = "relight-scene/1";
+  j["photo"] = relative(scene.photo_path);
+  j["geometry"] = relative(scene.geometry_path);
+  const CameraSpec& c = scene.camera.spec();
+  j["camera"] = {{"position", v3(c.position)}, {"look_at", v3(c.look_at)}, {"up", v3(c.up)}, {"vfov_deg", c.vfov_deg}};
+  j["lights"] = json::array();
+  for (const auto& l : scene.lights) j["lights"].push_back(light_to_json(l));
+  j["background"] = v3(scene.background);
+  if (!scene.probes.empty()) {
+    j["probes"] = json::array();
+    for (const auto& p : scene.probes)
+      j["probes"].push_back({{"image", relative(p.path)},
+                             {"mapping", p.mapping == ProbeMapping::equirect ? "equirect" : "mirrorball"},
+                             {"position", v3(p.position)},
+                             {"forward", v3(p.forward)},
+                             {"up", v3(p.up)}});
+  }
+  return j.dump(2) + "\n";
+}
+
 std::string rig_to_json(const Rig& rig) {
   json j;
   j["format"] = "relight-rig/1";

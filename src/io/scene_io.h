@@ -15,6 +15,10 @@ Scene load_scene(const std::filesystem::path& path);
 
 Rig load_rig(const std::filesystem::path& path);
 
+// scene.json text for a scene; photo, geometry and probe paths are written
+// relative to `folder` (the folder the scene.json will be in).
+std::string scene_to_json(const Scene& scene, const std::filesystem::path& folder);
+
 // The rig as rig.json text, and written atomically.
 std::string rig_to_json(const Rig& rig);
 void save_rig(const std::filesystem::path& path, const Rig& rig);

@@ -4,18 +4,26 @@
 
 namespace relight {
 
-IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
-                                       const IlluminationOptions& options, Progress& progress,
-                                       const std::string& label) {
+namespace {
+
+struct PixelSums {
+  Image direct, indirect;
+  std::vector<float> indirect_variance;  // of the pixel's mean indirect luminance
+  IlluminationImages out;
+};
+
+// Traces paths_per_pixel paths per pixel. With seen_albedo, every camera
+// sample is weighted by the albedo of the surface it sees (a photo).
+PixelSums trace_pixels(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
+                       const SurfaceAlbedo* seen_albedo, int paths_per_pixel, uint64_t seed, Progress& progress,
+                       const std::string& label) {
   const int w = gbuffer.width(), h = gbuffer.height(), spp = gbuffer.samples_per_pixel();
-  const int paths = std::max(options.paths_per_pixel, spp);
-  IlluminationImages out{Image(w, h), Image(w, h)};
-  Image direct(w, h), indirect(w, h);
-  std::vector<float> indirect_variance(size_t(w) * h, 0.0f);
+  const int paths = std::max(paths_per_pixel, spp);
+  PixelSums r{Image(w, h), Image(w, h), std::vector<float>(size_t(w) * h, 0.0f), {Image(w, h), Image(w, h)}};
   progress.begin(label, h);
   tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
-      Rng rng(options.seed, size_t(y) * w + x);
+      Rng rng(seed, size_t(y) * w + x);
       Vec3 direct_sum = Vec3::Zero(), indirect_sum = Vec3::Zero(), background = Vec3::Zero();
       double lum_sum = 0.0, lum_sq_sum = 0.0;
       int surface_n = 0, background_n = 0;
@@ -25,6 +33,11 @@ IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& cam
         if (s.hit) {
           Vec3 d, ind;
           integrator.illumination(s.surface, rng, d, ind);
+          if (seen_albedo) {
+            const Vec3 a = seen_albedo->at(s.surface);
+            d = d.cwiseProduct(a);
+            ind = ind.cwiseProduct(a);
+          }
           direct_sum += d;
           indirect_sum += ind;
           const double l = luminance(ind);
@@ -39,20 +52,40 @@ IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& cam
       }
       const size_t idx = size_t(y) * w + x;
       if (surface_n) {
-        direct.pixels[idx] = direct_sum / float(surface_n);
-        indirect.pixels[idx] = indirect_sum / float(surface_n);
+        r.direct.pixels[idx] = direct_sum / float(surface_n);
+        r.indirect.pixels[idx] = indirect_sum / float(surface_n);
         const double mean = lum_sum / surface_n;
-        // variance of the mean of surface_n samples
-        indirect_variance[idx] = float(std::max(0.0, lum_sq_sum / surface_n - mean * mean) / surface_n);
+        r.indirect_variance[idx] = float(std::max(0.0, lum_sq_sum / surface_n - mean * mean) / surface_n);
       }
-      if (background_n) out.background.pixels[idx] = background / float(background_n);
+      if (background_n) r.out.background.pixels[idx] = background / float(background_n);
     }
     progress.advance();
   });
   progress.end();
-  if (options.denoise) indirect = denoise_illumination(indirect, std::move(indirect_variance), gbuffer);
-  for (size_t i = 0; i < out.surface.size(); ++i) out.surface.pixels[i] = direct.pixels[i] + indirect.pixels[i];
-  return out;
+  return r;
+}
+
+}  // namespace
+
+IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
+                                       const IlluminationOptions& options, Progress& progress,
+                                       const std::string& label) {
+  PixelSums r = trace_pixels(gbuffer, camera, integrator, nullptr, options.paths_per_pixel, options.seed, progress,
+                             label);
+  if (options.denoise) r.indirect = denoise_illumination(r.indirect, std::move(r.indirect_variance), gbuffer);
+  for (size_t i = 0; i < r.out.surface.size(); ++i) r.out.surface.pixels[i] = r.direct.pixels[i] + r.indirect.pixels[i];
+  return std::move(r.out);
+}
+
+Image synthesize_photo(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
+                       const SurfaceAlbedo& albedo, int paths_per_pixel, uint64_t seed, Progress& progress) {
+  const PixelSums r = trace_pixels(gbuffer, camera, integrator, &albedo, paths_per_pixel, seed, progress, "photo");
+  Image photo(gbuffer.width(), gbuffer.height());
+  for (size_t i = 0; i < photo.size(); ++i) {
+    const float c = gbuffer.coverage()[i];
+    photo.pixels[i] = c * (r.direct.pixels[i] + r.indirect.pixels[i]) + (1.0f - c) * r.out.background.pixels[i];
+  }
+  return photo;
 }
 
 }  // namespace relight

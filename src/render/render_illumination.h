@@ -23,6 +23,12 @@ struct IlluminationOptions {
   bool denoise = true;       // filter the environment + interreflection part
 };
 
+// A synthetic photo: each camera sample's illumination times the albedo of
+// the surface it sees, the environment where it sees none; no denoising.
+// Used to make scenes with a known albedo (the example, round-trip tests).
+Image synthesize_photo(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
+                       const SurfaceAlbedo& albedo, int paths_per_pixel, uint64_t seed, Progress& progress);
+
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                                        const IlluminationOptions& options, Progress& progress,
                                        const std::string& label = "illumination");

@@ -1,0 +1,34 @@
+// The example scene, built by the program's own tools: a small room (floor,
+// three walls) with a block and a ball, one lamp, a grey-blue background, and
+// a procedural albedo, so its true albedo is known exactly. `make_example`
+// renders it into examples/room/; the round-trip test renders it in memory.
+#pragma once
+
+#include <vector>
+
+#include "render/integrator.h"
+#include "scene/scene.h"
+
+namespace relight::example {
+
+// The room's geometry, camera (for a width x height photo), lamp and background.
+// The photo is left empty: render it with render_example_photo.
+Scene room_scene(int width, int height);
+
+// The room's true albedo: a checker floor, plaster walls with a soft band,
+// a blue block and a red ball.
+class RoomAlbedo final : public SurfaceAlbedo {
+ public:
+  explicit RoomAlbedo(std::vector<int> object_of_triangle) : object_(std::move(object_of_triangle)) {}
+  Vec3 at(const SurfacePoint& p) const override;
+
+ private:
+  std::vector<int> object_;
+};
+RoomAlbedo room_albedo();
+
+// A re-lighting of the room: the lamp moved and warmer, a cool spot on the
+// ball, the background dimmed.
+Rig evening_rig();
+
+}  // namespace relight::example

@@ -1,0 +1,72 @@
+// End-to-end on the reference scenes of ../shared/scenes: analyse each scene,
+// measure the albedo against albedo_gt.exr, render every rig and measure it
+// against relit/NAME.exr. Skipped where the reference scenes are absent.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "io/image_io.h"
+#include "io/scene_io.h"
+#include "relight/render_rig.h"
+
+namespace fs = std::filesystem;
+using namespace relight;
+
+namespace {
+
+fs::path scenes_folder() {
+  if (const char* env = std::getenv("RELIGHT_SCENES")) return env;
+  return fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes";
+}
+
+// Albedo PSNR: on the mask, values clipped to [0,1].
+double albedo_psnr(const Image& albedo, const fs::path& folder) {
+  int w, h;
+  const std::vector<float> mask = read_scalar_image(folder / "mask.exr", w, h);
+  return psnr(clip01(albedo), clip01(read_image(folder / "albedo_gt.exr")), &mask);
+}
+
+// Re-lit PSNR: x/(1+x) tone-mapped, sRGB-encoded, all pixels.
+double relit_psnr(const Image& image, const fs::path& reference) {
+  return psnr(tonemap_reinhard_srgb(image), tonemap_reinhard_srgb(read_image(reference)));
+}
+
+class ReferenceScene : public testing::TestWithParam<std::string> {};
+
+TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
+  const fs::path folder = scenes_folder() / GetParam();
+  if (!fs::exists(folder / "scene.json"))
+    GTEST_SKIP() << "reference scene " << folder << " not found (set RELIGHT_SCENES to the scenes folder)";
+
+  const Scene scene = load_scene(folder / "scene.json");
+  AnalysisOptions options;
+  options.strategy = default_strategy(scene);
+  options.paths_per_pixel = 32;
+  const RayScene rays(scene.mesh);
+  const GBuffer gbuffer = scene_gbuffer(scene, rays, options);
+  const Analysis analysis = analyze(scene, rays, gbuffer, options, Progress::silent());
+
+  const double albedo = albedo_psnr(analysis.albedo.albedo_coverage, folder);
+  std::printf("[ figures  ] %s albedo PSNR %.2f dB (%s, %d spp, %d renders)\n", GetParam().c_str(), albedo,
+              to_string(options.strategy), options.paths_per_pixel, analysis.iterations);
+  EXPECT_GE(albedo, 30.0);
+
+  int rigs = 0;
+  for (const auto& entry : fs::directory_iterator(folder / "rigs")) {
+    const std::string name = entry.path().stem().string();
+    const Rig rig = load_rig(entry.path());
+    RenderOptions render_options;
+    render_options.paths_per_pixel = options.paths_per_pixel;
+    const Image relit = render_rig(scene, rays, gbuffer, analysis, rig, render_options, Progress::silent());
+    const double db = relit_psnr(relit, folder / "relit" / (name + ".exr"));
+    std::printf("[ figures  ] %s rig %s re-lit PSNR %.2f dB\n", GetParam().c_str(), name.c_str(), db);
+    EXPECT_GE(db, name == "same" ? 40.0 : 30.0) << "rig " << name;
+    ++rigs;
+  }
+  EXPECT_GT(rigs, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceScene, testing::Values("outdoor", "bookcase"));
+
+}  // namespace

@@ -1,0 +1,10 @@
+# End-to-end tests: the round trip on the example room (always runs) and the
+# reference scenes of ../shared/scenes (skipped where they are absent).
+add_executable(roundtrip_test roundtrip_test.cpp)
+target_link_libraries(roundtrip_test PRIVATE relight_relight relight_example TBB::tbb GTest::gtest_main)
+gtest_discover_tests(roundtrip_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+
+add_executable(e2e_test e2e_test.cpp)
+target_link_libraries(e2e_test PRIVATE relight_relight GTest::gtest_main)
+target_compile_definitions(e2e_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+gtest_discover_tests(e2e_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 1200)
