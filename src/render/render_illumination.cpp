@@ -8,7 +8,7 @@ namespace {
 
 struct PixelSums {
   Image direct, indirect;
-  std::vector<float> indirect_variance;  // of the pixel's mean indirect luminance
+  std::vector<float> direct_variance, indirect_variance;  // of the pixel's mean luminance
   IlluminationImages out;
 };
 
@@ -19,13 +19,14 @@ PixelSums trace_pixels(const GBuffer& gbuffer, const Camera& camera, const Integ
                        const std::string& label) {
   const int w = gbuffer.width(), h = gbuffer.height(), spp = gbuffer.samples_per_pixel();
   const int paths = std::max(paths_per_pixel, spp);
-  PixelSums r{Image(w, h), Image(w, h), std::vector<float>(size_t(w) * h, 0.0f), {Image(w, h), Image(w, h)}};
+  PixelSums r{Image(w, h), Image(w, h), std::vector<float>(size_t(w) * h, 0.0f),
+              std::vector<float>(size_t(w) * h, 0.0f), {Image(w, h), Image(w, h)}};
   progress.begin(label, h);
   tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       Rng rng(seed, size_t(y) * w + x);
       Vec3 direct_sum = Vec3::Zero(), indirect_sum = Vec3::Zero(), background = Vec3::Zero();
-      double lum_sum = 0.0, lum_sq_sum = 0.0;
+      double lum_sum = 0.0, lum_sq_sum = 0.0, direct_lum_sum = 0.0, direct_lum_sq_sum = 0.0;
       int surface_n = 0, background_n = 0;
       for (int i = 0; i < paths; ++i) {
         const int k = i % spp;
@@ -40,9 +41,11 @@ PixelSums trace_pixels(const GBuffer& gbuffer, const Camera& camera, const Integ
           }
           direct_sum += d;
           indirect_sum += ind;
-          const double l = luminance(ind);
+          const double l = luminance(ind), ld = luminance(d);
           lum_sum += l;
           lum_sq_sum += l * l;
+          direct_lum_sum += ld;
+          direct_lum_sq_sum += ld * ld;
           ++surface_n;
         } else if (i < spp) {  // the background needs one look per sample
           const Vec2 pos = gbuffer.sample_position(x, y, k);
@@ -54,8 +57,12 @@ PixelSums trace_pixels(const GBuffer& gbuffer, const Camera& camera, const Integ
       if (surface_n) {
         r.direct.pixels[idx] = direct_sum / float(surface_n);
         r.indirect.pixels[idx] = indirect_sum / float(surface_n);
-        const double mean = lum_sum / surface_n;
-        r.indirect_variance[idx] = float(std::max(0.0, lum_sq_sum / surface_n - mean * mean) / surface_n);
+        const auto variance_of_mean = [&](double sum, double sq_sum) {
+          const double mean = sum / surface_n;
+          return float(std::max(0.0, sq_sum / surface_n - mean * mean) / surface_n);
+        };
+        r.indirect_variance[idx] = variance_of_mean(lum_sum, lum_sq_sum);
+        r.direct_variance[idx] = variance_of_mean(direct_lum_sum, direct_lum_sq_sum);
       }
       if (background_n) r.out.background.pixels[idx] = background / float(background_n);
     }
@@ -72,7 +79,14 @@ IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& cam
                                        const std::string& label) {
   PixelSums r = trace_pixels(gbuffer, camera, integrator, nullptr, options.paths_per_pixel, options.seed, progress,
                              label);
-  if (options.denoise) r.indirect = denoise_illumination(r.indirect, std::move(r.indirect_variance), gbuffer);
+  if (options.denoise) {
+    r.indirect = denoise_illumination(r.indirect, std::move(r.indirect_variance), gbuffer);
+    // Direct light has sharp shadow edges: filter it only where its noise is
+    // far above the local differences (soft shadows of area lights).
+    DenoiseOptions direct_options;
+    direct_options.luminance_sigma = 1.0f;
+    r.direct = denoise_illumination(r.direct, std::move(r.direct_variance), gbuffer, direct_options);
+  }
   for (size_t i = 0; i < r.out.surface.size(); ++i) r.out.surface.pixels[i] = r.direct.pixels[i] + r.indirect.pixels[i];
   return std::move(r.out);
 }
