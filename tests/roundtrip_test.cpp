@@ -94,7 +94,7 @@ TEST(RoundTrip, SameSeedGivesTheSameImageWhateverTheThreads) {
   AnalysisOptions options;
   options.paths_per_pixel = 16;
   const GBuffer gbuffer = scene_gbuffer(t.scene, rays, options);
-  const Lighting lighting = strategy_lighting(t.scene, Strategy::lights);
+  const Lighting lighting = strategy_lighting(t.scene, rays, Strategy::lights);
   const Integrator integrator(rays, lighting, nullptr);
   const Image a = render_illumination(gbuffer, t.scene.camera, integrator, illumination_options(options),
                                       Progress::silent()).surface;

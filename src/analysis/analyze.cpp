@@ -47,7 +47,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   Analysis result;
   result.options = options;
   result.coverage = gbuffer.coverage();
-  const Lighting lighting = strategy_lighting(scene, options.strategy);
+  const Lighting lighting = strategy_lighting(scene, rays, options.strategy);
   IntegratorOptions integrator_options;
   integrator_options.max_bounces = options.max_bounces;
 

@@ -1,6 +1,6 @@
 #include "analysis/strategy.h"
 
-#include "analysis/probe_light_removal.h"
+#include "analysis/probe_cleanup.h"
 #include "core/error.h"
 
 namespace relight {
@@ -32,23 +32,20 @@ void check_strategy(const Scene& scene, Strategy strategy) {
                      std::string("strategy '") + to_string(strategy) + "' needs at least one light probe");
 }
 
-Environment strategy_environment(const Scene& scene, Strategy strategy) {
-  switch (strategy) {
-    case Strategy::lights: return Environment::constant(scene.background);
-    case Strategy::probe: return Environment::from_probes(scene.probes);
-    case Strategy::combined: {
-      std::vector<Probe> cleaned;
-      for (const auto& p : scene.probes) cleaned.push_back(remove_lights_from_probe(p, scene.lights));
-      return Environment::from_probes(cleaned);
-    }
+Environment strategy_environment(const Scene& scene, const RayScene& rays, Strategy strategy) {
+  if (strategy == Strategy::lights) return Environment::constant(scene.background);
+  std::vector<Probe> cleaned;
+  for (const auto& p : scene.probes) {
+    Probe distant = remove_local_geometry_from_probe(p, rays);
+    cleaned.push_back(strategy == Strategy::combined ? remove_lights_from_probe(distant, scene.lights) : distant);
   }
-  return Environment::constant(scene.background);
+  return Environment::from_probes(cleaned);
 }
 
-Lighting strategy_lighting(const Scene& scene, Strategy strategy) {
+Lighting strategy_lighting(const Scene& scene, const RayScene& rays, Strategy strategy) {
   Lighting lighting;
   if (strategy != Strategy::probe) lighting.lights = scene.lights;
-  lighting.environment = strategy_environment(scene, strategy);
+  lighting.environment = strategy_environment(scene, rays, strategy);
   return lighting;
 }
 

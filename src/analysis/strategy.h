@@ -22,9 +22,10 @@ Strategy default_strategy(const Scene& scene);
 void check_strategy(const Scene& scene, Strategy strategy);
 
 // The scene's environment as the strategy models it: the background, or the
-// probes with the principal lights removed (raw probes for `probe`).
-Environment strategy_environment(const Scene& scene, Strategy strategy);
+// probes with the modelled geometry taken out of them, and for `combined` the
+// principal lights too (probe_cleanup.h).
+Environment strategy_environment(const Scene& scene, const RayScene& rays, Strategy strategy);
 // The full original lighting under a strategy.
-Lighting strategy_lighting(const Scene& scene, Strategy strategy);
+Lighting strategy_lighting(const Scene& scene, const RayScene& rays, Strategy strategy);
 
 }  // namespace relight

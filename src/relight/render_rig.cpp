@@ -8,7 +8,7 @@ Image render_rig(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
                  const Rig& rig, const RenderOptions& options, Progress& progress) {
   Lighting lighting;
   lighting.lights = rig.lights;
-  lighting.environment = strategy_environment(scene, analysis.options.strategy);
+  lighting.environment = strategy_environment(scene, rays, analysis.options.strategy);
   lighting.environment.set_scale(rig.environment_scale);
 
   const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, analysis.albedo.albedo, analysis.albedo.mean);

@@ -1,4 +1,4 @@
-#include "analysis/probe_light_removal.h"
+#include "analysis/probe_cleanup.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +23,66 @@ bool light_direction(const Light& light, const Vec3& from, Vec3& dir, float& ang
   return true;
 }
 
+// Fills the pixels marked `hole` from their known neighbours, one ring per
+// pass (equirect images wrap around horizontally). Pixels marked `outside`
+// (off a mirror ball's disc) are neither used nor filled.
+void fill_holes(Image& img, std::vector<uint8_t>& hole, const std::vector<uint8_t>& outside, bool wrap_x) {
+  const int w = img.width, h = img.height;
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<std::pair<size_t, Vec3>> updates;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        if (!hole[i]) continue;
+        Vec3 sum = Vec3::Zero();
+        int n = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            int nx = x + dx;
+            const int ny = y + dy;
+            if (ny < 0 || ny >= h) continue;
+            if (wrap_x) nx = (nx + w) % w;
+            if (nx < 0 || nx >= w) continue;
+            const size_t j = size_t(ny) * w + nx;
+            if (hole[j] || outside[j]) continue;
+            sum += img.pixels[j];
+            ++n;
+          }
+        if (n) updates.emplace_back(i, sum / float(n));
+      }
+    for (const auto& [i, v] : updates) {
+      img.pixels[i] = v;
+      hole[i] = 0;
+      changed = true;
+    }
+  }
+}
+
 }  // namespace
+
+Probe remove_local_geometry_from_probe(const Probe& probe, const RayScene& rays) {
+  Probe out = probe;
+  const ProbeFrame frame(probe.forward, probe.up);
+  const int w = probe.image.width, h = probe.image.height;
+  std::vector<uint8_t> hole(size_t(w) * h, 0), outside(size_t(w) * h, 0);
+  size_t holes = 0, known = 0;
+  SurfacePoint hit;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      const auto d = probe_uv_to_direction(probe.mapping, frame, Vec2((x + 0.5f) / w, (y + 0.5f) / h));
+      if (!d) {
+        outside[i] = 1;
+        continue;
+      }
+      hole[i] = rays.intersect(probe.position, *d, hit);
+      (hole[i] ? holes : known)++;
+    }
+  if (known == 0) return out;  // the probe sees only geometry: nothing distant to keep
+  fill_holes(out.image, hole, outside, probe.mapping == ProbeMapping::equirect);
+  return out;
+}
 
 Probe remove_lights_from_probe(const Probe& probe, const std::vector<Light>& lights) {
   Probe out = probe;
