@@ -111,7 +111,14 @@ Vec2 Distribution2D::sample(const Vec2& u, float& pdf_out) const {
   const int y = marginal_.sample(u.y(), oy, py);
   const int x = rows_[y].sample(u.x(), ox, px);
   pdf_out = py * px;
-  return {(x + ox) / width_, (y + oy) / height_};
+  // (cell + offset)/n can round up into the next cell in float: step back so
+  // that pdf() reads back the sampled cell.
+  const auto inside = [](int cell, float offset, int n) {
+    float t = (cell + offset) / n;
+    while (t > 0.0f && int(t * n) > cell) t = std::nextafter(t, 0.0f);
+    return t;
+  };
+  return {inside(x, ox, width_), inside(y, oy, height_)};
 }
 
 float Distribution2D::pdf(const Vec2& uv) const {

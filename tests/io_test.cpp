@@ -1,0 +1,975 @@
+// Input and output: every loader's error cases (an InputError whose message
+// names the file, the place — a JSON pointer such as /lights/0/power — and the
+// problem, FORMAT.md's rule), the successful loading of a small scene and a
+// rig, and the image and atomic writers.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "io/mesh_io.h"
+#include "io/scene_io.h"
+
+namespace relight {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// A fresh folder under the system temp folder, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const std::string test = info ? std::string(info->test_suite_name()) + "_" + info->name() : "x";
+    path_ = fs::temp_directory_path() /
+            ("relight_io_test_" + std::to_string(getpid()) + "_" + std::to_string(counter++) + "_" + test);
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  fs::path path_;
+};
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  ASSERT_TRUE(out.good()) << path;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs f, which must throw InputError; returns its message.
+std::string input_error_message(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected relight::InputError, got another exception: " << e.what();
+    return {};
+  }
+  ADD_FAILURE() << "expected relight::InputError, nothing was thrown";
+  return {};
+}
+
+// Asserts that `message` contains every one of `parts`.
+#define EXPECT_MENTIONS(message, ...)                                                   \
+  do {                                                                                  \
+    const std::string msg_ = (message);                                                 \
+    for (const std::string& part_ : std::initializer_list<std::string>{__VA_ARGS__})    \
+      EXPECT_NE(msg_.find(part_), std::string::npos)                                    \
+          << "the message \"" << msg_ << "\" does not mention \"" << part_ << "\"";     \
+  } while (0)
+
+const char* kQuadObj =
+    "# a unit quad in z = 0\n"
+    "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+    "f 1 2 3\nf 1 3 4\n";
+
+Image test_photo(int w, int h) {
+  Image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) img.at(x, y) = Vec3(0.1f * x, 0.2f * y, 0.5f + 0.01f * (x + y));
+  return img;
+}
+
+// A valid scene folder: geometry.obj, photo.exr (4 x 3), probe.exr (8 x 4)
+// and the scene.json text `scene` (editable before writing).
+class SceneFolder : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    write_text(dir / "geometry.obj", kQuadObj);
+    write_exr(dir / "photo.exr", test_photo(4, 3));
+    write_exr(dir / "probe.exr", Image(8, 4, Vec3(0.5f, 0.5f, 0.5f)));
+    scene = json::parse(R"({
+      "format": "relight-scene/1",
+      "photo": "photo.exr",
+      "geometry": "geometry.obj",
+      "camera": {"position": [0, -5, 1], "look_at": [0, 0, 0], "up": [0, 0, 1], "vfov_deg": 35},
+      "lights": [
+        {"type": "point", "position": [1, 2, 3], "power": 100},
+        {"type": "spot", "name": "key", "color": "#ff8000", "enabled": false, "position": [0, 0, 4],
+         "direction": [0, 0, -2], "power": 800, "spot_angle_deg": 40, "blend": 0.2, "radius": 0.1},
+        {"type": "area", "position": [0, 0, 3], "direction": [0, 0, -1], "up": [0, 1, 0], "size": [2, 0.5],
+         "power": 50, "color": [0.5, 0.25, 1.0]},
+        {"type": "directional", "direction": [-0.4, 0.3, -0.87], "irradiance": 4, "angle_deg": 0.5}
+      ],
+      "background": [0.35, 0.45, 0.6],
+      "probes": [{"image": "probe.exr", "mapping": "equirect", "position": [0, 0, 1],
+                  "forward": [0, 1, 0], "up": [0, 0, 1]}]
+    })");
+  }
+
+  fs::path scene_path() const { return dir / "scene.json"; }
+  // Writes `scene` and loads it; returns the InputError message.
+  std::string load_error() {
+    write_text(scene_path(), scene.dump(2));
+    return input_error_message([&] { load_scene(scene_path()); });
+  }
+
+  TempDir dir;
+  json scene;
+};
+
+// ------------------------------------------------------ scene.json errors
+
+TEST_F(SceneFolder, ValidSceneLoads) {
+  write_text(scene_path(), scene.dump(2));
+  EXPECT_NO_THROW(load_scene(scene_path()));
+}
+
+TEST_F(SceneFolder, MissingSceneFileIsNamed) {
+  const fs::path missing = dir / "no_such_scene.json";
+  EXPECT_MENTIONS(input_error_message([&] { load_scene(missing); }), missing.string(), "not found");
+}
+
+TEST_F(SceneFolder, MalformedJsonGivesLineNumber) {
+  write_text(scene_path(), "{\n  \"format\": \"relight-scene/1\",\n  \"photo\": \"photo.exr\" ]\n}\n");
+  EXPECT_MENTIONS(input_error_message([&] { load_scene(scene_path()); }), scene_path().string(), "line 3",
+                  "malformed JSON");
+}
+
+TEST_F(SceneFolder, EmptyFileIsMalformedJson) {
+  write_text(scene_path(), "");
+  EXPECT_MENTIONS(input_error_message([&] { load_scene(scene_path()); }), scene_path().string(), "JSON");
+}
+
+TEST_F(SceneFolder, TopLevelArrayIsRejected) {
+  write_text(scene_path(), "[1, 2, 3]");
+  EXPECT_MENTIONS(input_error_message([&] { load_scene(scene_path()); }), scene_path().string(), "object");
+}
+
+TEST_F(SceneFolder, WrongFormatString) {
+  scene["format"] = "relight-scene/2";
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/format", "relight-scene/1", "relight-scene/2");
+}
+
+TEST_F(SceneFolder, RigFormatIsNotASceneFormat) {
+  scene["format"] = "relight-rig/1";
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/format", "relight-scene/1");
+}
+
+TEST_F(SceneFolder, MissingFormat) {
+  scene.erase("format");
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/format", "missing");
+}
+
+TEST_F(SceneFolder, MissingCamera) {
+  scene.erase("camera");
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera", "missing");
+}
+
+TEST_F(SceneFolder, MissingPhotoKey) {
+  scene.erase("photo");
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/photo", "missing");
+}
+
+TEST_F(SceneFolder, MissingGeometryKey) {
+  scene.erase("geometry");
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/geometry", "missing");
+}
+
+TEST_F(SceneFolder, MissingCameraKey) {
+  scene["camera"].erase("look_at");
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/look_at", "missing");
+}
+
+TEST_F(SceneFolder, WrongTypeForVfov) {
+  scene["camera"]["vfov_deg"] = "35";
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/vfov_deg", "number", "string");
+}
+
+TEST_F(SceneFolder, VfovOutOfRange) {
+  scene["camera"]["vfov_deg"] = 0;
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/vfov_deg");
+  scene["camera"]["vfov_deg"] = 200;
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/vfov_deg");
+}
+
+TEST_F(SceneFolder, CameraPositionWithTwoNumbers) {
+  scene["camera"]["position"] = json::array({1, 2});
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/position", "3 numbers");
+}
+
+TEST_F(SceneFolder, CameraPositionWithAString) {
+  scene["camera"]["position"] = json::array({1, "x", 3});
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/position/1", "number");
+}
+
+TEST_F(SceneFolder, CameraUpParallelToView) {
+  scene["camera"]["up"] = json::array({0, 5, -1});  // along look_at - position
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/up", "parallel");
+}
+
+TEST_F(SceneFolder, CameraLookingAtItself) {
+  scene["camera"]["look_at"] = scene["camera"]["position"];
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/look_at");
+}
+
+TEST_F(SceneFolder, LightsNotAnArray) {
+  scene["lights"] = json::object();
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights", "array");
+}
+
+TEST_F(SceneFolder, LightOfUnknownType) {
+  scene["lights"][0]["type"] = "laser";
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/0/type", "laser", "point");
+}
+
+TEST_F(SceneFolder, LightWithoutType) {
+  scene["lights"][2].erase("type");
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/2/type", "missing");
+}
+
+TEST_F(SceneFolder, ZeroPower) {
+  scene["lights"][0]["power"] = 0;
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/0/power", "greater than 0");
+}
+
+TEST_F(SceneFolder, NegativePowerOfSecondLight) {
+  scene["lights"][1]["power"] = -5;
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/1/power", "greater than 0");
+}
+
+TEST_F(SceneFolder, NegativeAreaPower) {
+  scene["lights"][2]["power"] = -1.5;
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/2/power");
+}
+
+TEST_F(SceneFolder, ZeroIrradiance) {
+  scene["lights"][3]["irradiance"] = 0;
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/3/irradiance");
+}
+
+TEST_F(SceneFolder, MissingPower) {
+  scene["lights"][0].erase("power");
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/0/power", "missing");
+}
+
+TEST_F(SceneFolder, PowerAsString) {
+  scene["lights"][0]["power"] = "100 W";
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/0/power", "number");
+}
+
+TEST_F(SceneFolder, ZeroDirectionVector) {
+  scene["lights"][3]["direction"] = json::array({0, 0, 0});
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/3/direction", "non-zero");
+}
+
+TEST_F(SceneFolder, ZeroSpotDirection) {
+  scene["lights"][1]["direction"] = json::array({0.0, 0.0, 0.0});
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/1/direction", "non-zero");
+}
+
+TEST_F(SceneFolder, BadHexColourCharacters) {
+  scene["lights"][1]["color"] = "#ff80zz";
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/1/color", "#ff80zz", "#rrggbb");
+}
+
+TEST_F(SceneFolder, BadHexColourLength) {
+  scene["lights"][0]["color"] = "#ff80";
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/0/color", "#rrggbb");
+}
+
+TEST_F(SceneFolder, NegativeColourComponent) {
+  scene["lights"][2]["color"] = json::array({0.5, -0.1, 1.0});
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/2/color/1");
+}
+
+TEST_F(SceneFolder, BadBackground) {
+  scene["background"] = "blue";
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/background");
+}
+
+TEST_F(SceneFolder, SpotAngleZero) {
+  scene["lights"][1]["spot_angle_deg"] = 0;
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/1/spot_angle_deg");
+}
+
+TEST_F(SceneFolder, BlendAboveOne) {
+  scene["lights"][1]["blend"] = 1.5;
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/1/blend");
+}
+
+TEST_F(SceneFolder, NegativeRadius) {
+  scene["lights"][0]["radius"] = -0.5;
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/0/radius");
+}
+
+TEST_F(SceneFolder, AreaSizeWithOneNumber) {
+  scene["lights"][2]["size"] = json::array({2});
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/2/size");
+}
+
+TEST_F(SceneFolder, AreaSizeZero) {
+  scene["lights"][2]["size"] = json::array({2, 0});
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/2/size/1");
+}
+
+TEST_F(SceneFolder, AreaUpParallelToDirection) {
+  scene["lights"][2]["up"] = json::array({0, 0, 3});
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/2/up", "parallel");
+}
+
+TEST_F(SceneFolder, EnabledNotABoolean) {
+  scene["lights"][0]["enabled"] = "yes";
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/0/enabled");
+}
+
+TEST_F(SceneFolder, LightNotAnObject) {
+  scene["lights"][1] = 42;
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/1", "object");
+}
+
+TEST_F(SceneFolder, EquirectProbeMustBeTwoToOne) {
+  write_exr(dir / "probe.exr", Image(6, 4, Vec3::Ones()));
+  const std::string msg = load_error();
+  EXPECT_MENTIONS(msg, (dir / "probe.exr").string(), "twice as wide", "6x4");
+}
+
+TEST_F(SceneFolder, MirrorballProbeMustBeSquare) {
+  scene["probes"][0]["mapping"] = "mirrorball";  // probe.exr is 8 x 4
+  EXPECT_MENTIONS(load_error(), (dir / "probe.exr").string(), "square", "8x4");
+}
+
+TEST_F(SceneFolder, UnknownProbeMapping) {
+  scene["probes"][0]["mapping"] = "cubemap";
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/probes/0/mapping", "cubemap", "equirect");
+}
+
+TEST_F(SceneFolder, ProbeImageMissing) {
+  scene["probes"][0]["image"] = "nowhere.exr";
+  EXPECT_MENTIONS(load_error(), (dir / "nowhere.exr").string(), "not found");
+}
+
+TEST_F(SceneFolder, PhotoFileMissing) {
+  fs::remove(dir / "photo.exr");
+  EXPECT_MENTIONS(load_error(), (dir / "photo.exr").string(), "not found");
+}
+
+TEST_F(SceneFolder, PhotoWithNaNPixel) {
+  Image photo = test_photo(4, 3);
+  photo.at(2, 1).y() = std::numeric_limits<float>::quiet_NaN();
+  write_exr(dir / "photo.exr", photo);
+  EXPECT_MENTIONS(load_error(), (dir / "photo.exr").string(), "pixel (2, 1)", "NaN");
+}
+
+TEST_F(SceneFolder, PhotoThatIsAFolder) {
+  fs::remove(dir / "photo.exr");
+  fs::create_directory(dir / "photo.exr");
+  EXPECT_MENTIONS(load_error(), (dir / "photo.exr").string(), "folder");
+}
+
+TEST_F(SceneFolder, PhotoThatIsNotAnImage) {
+  write_text(dir / "photo.exr", "this is not an EXR file");
+  EXPECT_MENTIONS(load_error(), (dir / "photo.exr").string());
+}
+
+TEST_F(SceneFolder, GeometryFileMissing) {
+  scene["geometry"] = "missing.obj";
+  EXPECT_MENTIONS(load_error(), (dir / "missing.obj").string(), "not found");
+}
+
+TEST_F(SceneFolder, SceneJsonThatIsAFolder) {
+  fs::create_directory(dir / "folder.json");
+  EXPECT_MENTIONS(input_error_message([&] { load_scene(dir / "folder.json"); }), (dir / "folder.json").string(),
+                  "folder");
+}
+
+// ------------------------------------------------------ image and mesh errors
+
+TEST(ImageErrors, MissingFile) {
+  TempDir dir;
+  EXPECT_MENTIONS(input_error_message([&] { read_image(dir / "absent.exr"); }), (dir / "absent.exr").string(),
+                  "not found");
+}
+
+TEST(ImageErrors, NaNPixelIsReportedWithItsPosition) {
+  TempDir dir;
+  Image img(3, 2, Vec3(1, 1, 1));
+  img.at(1, 1).z() = std::numeric_limits<float>::quiet_NaN();
+  write_exr(dir / "nan.exr", img);
+  EXPECT_MENTIONS(input_error_message([&] { read_image(dir / "nan.exr"); }), (dir / "nan.exr").string(),
+                  "pixel (1, 1)", "NaN");
+}
+
+TEST(ImageErrors, InfinitePixelIsReported) {
+  TempDir dir;
+  Image img(3, 2, Vec3(1, 1, 1));
+  img.at(0, 1).x() = std::numeric_limits<float>::infinity();
+  write_exr(dir / "inf.exr", img);
+  EXPECT_MENTIONS(input_error_message([&] { read_image(dir / "inf.exr"); }), (dir / "inf.exr").string(),
+                  "pixel (0, 1)", "infinite");
+}
+
+TEST(ImageErrors, PathThatIsAFolder) {
+  TempDir dir;
+  EXPECT_MENTIONS(input_error_message([&] { read_image(dir.path()); }), dir.path().string(), "folder");
+}
+
+TEST(ImageErrors, GarbageFile) {
+  TempDir dir;
+  write_text(dir / "garbage.png", "definitely not a PNG");
+  EXPECT_MENTIONS(input_error_message([&] { read_image(dir / "garbage.png"); }), (dir / "garbage.png").string());
+}
+
+TEST(MeshErrors, MissingFile) {
+  TempDir dir;
+  EXPECT_MENTIONS(input_error_message([&] { load_mesh(dir / "absent.obj"); }), (dir / "absent.obj").string(),
+                  "not found");
+}
+
+TEST(MeshErrors, PathThatIsAFolder) {
+  TempDir dir;
+  EXPECT_MENTIONS(input_error_message([&] { load_mesh(dir.path()); }), dir.path().string(), "folder");
+}
+
+TEST(MeshErrors, OnlyVerticesNoTriangles) {
+  TempDir dir;
+  write_text(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  EXPECT_MENTIONS(input_error_message([&] { load_mesh(dir / "points.obj"); }), (dir / "points.obj").string(), "mesh");
+}
+
+TEST(MeshErrors, OnlyLinesNoTriangles) {
+  TempDir dir;
+  write_text(dir / "lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n");
+  EXPECT_MENTIONS(input_error_message([&] { load_mesh(dir / "lines.obj"); }), (dir / "lines.obj").string(),
+                  "triangles");
+}
+
+TEST(MeshErrors, OnlyDegenerateTriangles) {
+  TempDir dir;
+  write_text(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  EXPECT_MENTIONS(input_error_message([&] { load_mesh(dir / "flat.obj"); }), (dir / "flat.obj").string(),
+                  "degenerate");
+}
+
+TEST(MeshErrors, NaNVertex) {
+  TempDir dir;
+  write_text(dir / "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_MENTIONS(input_error_message([&] { load_mesh(dir / "nan.obj"); }), (dir / "nan.obj").string(), "NaN");
+}
+
+TEST(MeshErrors, EmptyFile) {
+  TempDir dir;
+  write_text(dir / "empty.obj", "");
+  EXPECT_MENTIONS(input_error_message([&] { load_mesh(dir / "empty.obj"); }), (dir / "empty.obj").string());
+}
+
+TEST(Mesh, LoadsTrianglesAndDropsDegenerateOnes) {
+  TempDir dir;
+  write_text(dir / "mesh.obj", std::string(kQuadObj) + "v 5 5 5\nv 6 6 6\nv 7 7 7\nf 5 6 7\n");
+  const TriangleMesh mesh = load_mesh(dir / "mesh.obj");
+  ASSERT_EQ(mesh.triangles.size(), 2u);
+  // The two kept triangles are the quad's: their corners span [-1, 1]^2 in z = 0.
+  Eigen::AlignedBox3f box;
+  for (const auto& t : mesh.triangles)
+    for (uint32_t i : t) {
+      ASSERT_LT(i, mesh.positions.size());
+      box.extend(mesh.positions[i]);
+    }
+  EXPECT_EQ(box.min(), Vec3(-1, -1, 0));
+  EXPECT_EQ(box.max(), Vec3(1, 1, 0));
+  EXPECT_FALSE(mesh.has_normals());
+}
+
+TEST(Mesh, KeepsNormalsWhenTheFileHasThem) {
+  TempDir dir;
+  write_text(dir / "n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n");
+  const TriangleMesh mesh = load_mesh(dir / "n.obj");
+  ASSERT_EQ(mesh.triangles.size(), 1u);
+  ASSERT_TRUE(mesh.has_normals());
+  ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+  for (const auto& n : mesh.normals) EXPECT_LT((n - Vec3(0, 0, 1)).norm(), 1e-6f);
+}
+
+// ------------------------------------------------------------ rig errors
+
+class RigFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    rig = json::parse(R"({
+      "format": "relight-rig/1",
+      "environment_scale": 0.5,
+      "lights": [
+        {"name": "key", "type": "spot", "position": [2, -3, 3], "direction": [-0.4, 0.6, -0.7],
+         "color": "#ffd8a8", "power": 800, "spot_angle_deg": 40, "blend": 0.2},
+        {"type": "point", "position": [0, 0, 2], "power": 10}
+      ]
+    })");
+  }
+  fs::path rig_path() const { return dir / "rig.json"; }
+  std::string load_error() {
+    write_text(rig_path(), rig.dump(2));
+    return input_error_message([&] { load_rig(rig_path()); });
+  }
+  TempDir dir;
+  json rig;
+};
+
+TEST_F(RigFile, ValidRigLoads) {
+  write_text(rig_path(), rig.dump(2));
+  const Rig r = load_rig(rig_path());
+  EXPECT_FLOAT_EQ(r.environment_scale, 0.5f);
+  ASSERT_EQ(r.lights.size(), 2u);
+  EXPECT_EQ(r.lights[0].name, "key");
+  EXPECT_EQ(r.lights[0].type, LightType::spot);
+  EXPECT_EQ(r.lights[1].name, "point 1");
+  EXPECT_NEAR(r.lights[0].direction.norm(), 1.0f, 1e-6f);
+}
+
+TEST_F(RigFile, DefaultEnvironmentScaleIsOne) {
+  rig.erase("environment_scale");
+  rig.erase("lights");
+  write_text(rig_path(), rig.dump(2));
+  const Rig r = load_rig(rig_path());
+  EXPECT_EQ(r.environment_scale, 1.0f);
+  EXPECT_TRUE(r.lights.empty());
+}
+
+TEST_F(RigFile, MissingFile) {
+  EXPECT_MENTIONS(input_error_message([&] { load_rig(dir / "absent.json"); }), (dir / "absent.json").string(),
+                  "not found");
+}
+
+TEST_F(RigFile, Folder) {
+  EXPECT_MENTIONS(input_error_message([&] { load_rig(dir.path()); }), dir.path().string(), "folder");
+}
+
+TEST_F(RigFile, MalformedJsonGivesLineNumber) {
+  write_text(rig_path(), "{\n\"format\": \"relight-rig/1\",\n\"lights\": [\n{\"type\": \"point\",,}\n]\n}\n");
+  EXPECT_MENTIONS(input_error_message([&] { load_rig(rig_path()); }), rig_path().string(), "line 4", "malformed");
+}
+
+TEST_F(RigFile, SceneFormatIsNotARigFormat) {
+  rig["format"] = "relight-scene/1";
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/format", "relight-rig/1", "relight-scene/1");
+}
+
+TEST_F(RigFile, NegativeEnvironmentScale) {
+  rig["environment_scale"] = -1;
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/environment_scale");
+}
+
+TEST_F(RigFile, EnvironmentScaleAsString) {
+  rig["environment_scale"] = "1";
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/environment_scale", "number");
+}
+
+TEST_F(RigFile, ZeroPower) {
+  rig["lights"][1]["power"] = 0;
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/lights/1/power");
+}
+
+TEST_F(RigFile, UnknownLightType) {
+  rig["lights"][0]["type"] = "torch";
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/lights/0/type", "torch");
+}
+
+TEST_F(RigFile, BadHexColour) {
+  rig["lights"][0]["color"] = "ffd8a8";  // no '#'
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/lights/0/color", "#rrggbb");
+}
+
+TEST_F(RigFile, ZeroDirection) {
+  rig["lights"][0]["direction"] = json::array({0, 0, 0});
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/lights/0/direction", "non-zero");
+}
+
+TEST_F(RigFile, MissingSpotAngle) {
+  rig["lights"][0].erase("spot_angle_deg");
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/lights/0/spot_angle_deg", "missing");
+}
+
+// ------------------------------------------------------------ success
+
+TEST_F(SceneFolder, LoadsTheRightValues) {
+  // Load from another working directory: paths are relative to scene.json.
+  write_text(scene_path(), scene.dump(2));
+  const fs::path cwd = fs::current_path();
+  fs::current_path(fs::temp_directory_path());
+  Scene loaded;
+  try {
+    loaded = load_scene(scene_path());
+  } catch (...) {
+    fs::current_path(cwd);
+    throw;
+  }
+  fs::current_path(cwd);
+  const Scene& s = loaded;
+
+  EXPECT_EQ(s.path, scene_path());
+  EXPECT_EQ(s.photo_path, dir / "photo.exr");
+  EXPECT_EQ(s.geometry_path, dir / "geometry.obj");
+
+  // Photo and camera bound to it.
+  ASSERT_EQ(s.photo.width, 4);
+  ASSERT_EQ(s.photo.height, 3);
+  const Image expected_photo = test_photo(4, 3);
+  for (size_t i = 0; i < s.photo.size(); ++i) EXPECT_EQ(s.photo.pixels[i], expected_photo.pixels[i]) << i;
+  EXPECT_EQ(s.camera.width(), 4);
+  EXPECT_EQ(s.camera.height(), 3);
+  EXPECT_EQ(s.camera.spec().position, Vec3(0, -5, 1));
+  EXPECT_EQ(s.camera.spec().look_at, Vec3(0, 0, 0));
+  EXPECT_FLOAT_EQ(s.camera.spec().vfov_deg, 35.0f);
+  EXPECT_LT((s.camera.spec().up - Vec3(0, 0, 1)).norm(), 1e-6f);
+
+  EXPECT_EQ(s.mesh.triangles.size(), 2u);
+  EXPECT_EQ(s.background, Vec3(0.35f, 0.45f, 0.6f));
+
+  ASSERT_EQ(s.lights.size(), 4u);
+  // Light 0: every default.
+  const Light& p = s.lights[0];
+  EXPECT_EQ(p.type, LightType::point);
+  EXPECT_EQ(p.name, "point 0");
+  EXPECT_EQ(p.color, Vec3::Ones());
+  EXPECT_TRUE(p.enabled);
+  EXPECT_EQ(p.position, Vec3(1, 2, 3));
+  EXPECT_EQ(p.power, 100.0f);
+  EXPECT_EQ(p.radius, 0.0f);
+
+  // Light 1: hex colour linearised, disabled, normalised direction.
+  const Light& sp = s.lights[1];
+  EXPECT_EQ(sp.type, LightType::spot);
+  EXPECT_EQ(sp.name, "key");
+  EXPECT_FALSE(sp.enabled);
+  // sRGB decode of 0x80 = 128/255: ((c + 0.055)/1.055)^2.4 = 0.215861.
+  const double c80 = std::pow((128.0 / 255.0 + 0.055) / 1.055, 2.4);
+  EXPECT_NEAR(sp.color.x(), 1.0, 1e-6);
+  EXPECT_NEAR(sp.color.y(), c80, 1e-5);
+  EXPECT_NEAR(sp.color.y(), 0.215861, 1e-5);
+  EXPECT_EQ(sp.color.z(), 0.0f);
+  EXPECT_LT((sp.direction - Vec3(0, 0, -1)).norm(), 1e-6f);
+  EXPECT_EQ(sp.power, 800.0f);
+  EXPECT_FLOAT_EQ(sp.spot_angle_deg, 40.0f);
+  EXPECT_FLOAT_EQ(sp.blend, 0.2f);
+  EXPECT_FLOAT_EQ(sp.radius, 0.1f);
+
+  const Light& a = s.lights[2];
+  EXPECT_EQ(a.type, LightType::area);
+  EXPECT_EQ(a.name, "area 2");
+  EXPECT_EQ(a.color, Vec3(0.5f, 0.25f, 1.0f));
+  EXPECT_EQ(a.size, Vec2(2.0f, 0.5f));
+  EXPECT_EQ(a.power, 50.0f);
+  EXPECT_LT((a.up - Vec3(0, 1, 0)).norm(), 1e-6f);
+  EXPECT_EQ(a.emission(), Vec3(25.0f, 12.5f, 50.0f));
+
+  const Light& d = s.lights[3];
+  EXPECT_EQ(d.type, LightType::directional);
+  EXPECT_EQ(d.name, "directional 3");
+  EXPECT_LT((d.direction - Vec3(-0.4f, 0.3f, -0.87f).normalized()).norm(), 1e-6f);
+  EXPECT_EQ(d.irradiance, 4.0f);
+  EXPECT_FLOAT_EQ(d.angle_deg, 0.5f);
+
+  ASSERT_EQ(s.probes.size(), 1u);
+  EXPECT_EQ(s.probes[0].mapping, ProbeMapping::equirect);
+  EXPECT_EQ(s.probes[0].image.width, 8);
+  EXPECT_EQ(s.probes[0].image.height, 4);
+  EXPECT_EQ(s.probes[0].position, Vec3(0, 0, 1));
+  EXPECT_EQ(fs::path(s.probes[0].path), dir / "probe.exr");
+}
+
+TEST_F(SceneFolder, OptionalKeysDefault) {
+  scene.erase("lights");
+  scene.erase("background");
+  scene.erase("probes");
+  write_text(scene_path(), scene.dump(2));
+  const Scene s = load_scene(scene_path());
+  EXPECT_TRUE(s.lights.empty());
+  EXPECT_EQ(s.background, Vec3::Zero());
+  EXPECT_TRUE(s.probes.empty());
+}
+
+TEST_F(SceneFolder, UppercaseHexColourAndNullOptionalValues) {
+  scene["background"] = "#FFFFFF";
+  scene["lights"][0]["color"] = "#0A0B0C";
+  scene["lights"][0]["name"] = nullptr;  // null counts as absent
+  write_text(scene_path(), scene.dump(2));
+  const Scene s = load_scene(scene_path());
+  EXPECT_LT((s.background - Vec3::Ones()).norm(), 1e-6f);
+  // 0x0a/255 = 0.0392 is in the linear segment of sRGB: c / 12.92.
+  EXPECT_NEAR(s.lights[0].color.x(), 10.0 / 255.0 / 12.92, 1e-6);
+  EXPECT_NEAR(s.lights[0].color.y(), std::pow((11.0 / 255.0 + 0.055) / 1.055, 2.4), 1e-6);
+  EXPECT_NEAR(s.lights[0].color.z(), std::pow((12.0 / 255.0 + 0.055) / 1.055, 2.4), 1e-6);
+  EXPECT_EQ(s.lights[0].name, "point 0");
+}
+
+TEST_F(SceneFolder, UnknownKeysAreIgnored) {
+  scene["comment"] = "made by hand";
+  scene["lights"][0]["flicker"] = true;
+  write_text(scene_path(), scene.dump(2));
+  EXPECT_EQ(load_scene(scene_path()).lights.size(), 4u);
+}
+
+TEST(RigRoundTrip, SaveThenLoadGivesTheSameLights) {
+  TempDir dir;
+  Rig rig;
+  rig.environment_scale = 0.75f;
+  Light point;
+  point.type = LightType::point;
+  point.name = "bulb";
+  point.position = Vec3(1.25f, -2.5f, 3.0f);
+  point.power = 60.0f;
+  point.radius = 0.05f;
+  point.color = Vec3(1.0f, 0.9f, 0.7f);
+  Light spot;
+  spot.type = LightType::spot;
+  spot.name = "key";
+  spot.enabled = false;
+  spot.position = Vec3(2, -3, 3);
+  spot.direction = Vec3(-0.4f, 0.6f, -0.7f).normalized();
+  spot.power = 800.0f;
+  spot.spot_angle_deg = 40.0f;
+  spot.blend = 0.2f;
+  Light area;
+  area.type = LightType::area;
+  area.name = "softbox";
+  area.position = Vec3(0, 1, 2.5f);
+  area.direction = Vec3(0.1f, -0.2f, -1.0f).normalized();
+  area.up = Vec3(0, 1, 0);
+  area.size = Vec2(1.2f, 0.6f);
+  area.power = 300.0f;
+  Light sun;
+  sun.type = LightType::directional;
+  sun.name = "sun";
+  sun.direction = Vec3(-0.4f, 0.3f, -0.87f).normalized();
+  sun.irradiance = 4.0f;
+  sun.angle_deg = 0.5f;
+  sun.color = Vec3(1.0f, 0.95f, 0.9f);
+  rig.lights = {point, spot, area, sun};
+
+  save_rig(dir / "rig.json", rig);
+  const Rig back = load_rig(dir / "rig.json");
+  EXPECT_EQ(back.environment_scale, rig.environment_scale);
+  ASSERT_EQ(back.lights.size(), rig.lights.size());
+  for (size_t i = 0; i < rig.lights.size(); ++i) {
+    const Light& a = rig.lights[i];
+    const Light& b = back.lights[i];
+    SCOPED_TRACE(a.name);
+    EXPECT_EQ(b.type, a.type);
+    EXPECT_EQ(b.name, a.name);
+    EXPECT_EQ(b.enabled, a.enabled);
+    EXPECT_LT((b.color - a.color).norm(), 1e-6f);
+    EXPECT_EQ(b.power, a.power);
+    EXPECT_EQ(b.irradiance, a.irradiance);
+    EXPECT_EQ(b.emission(), a.emission());
+    if (a.type != LightType::directional) {
+      EXPECT_LT((b.position - a.position).norm(), 1e-6f);
+    }
+    if (a.type != LightType::point) {
+      EXPECT_LT((b.direction - a.direction).norm(), 1e-6f);
+    }
+    if (a.type == LightType::point || a.type == LightType::spot) {
+      EXPECT_EQ(b.radius, a.radius);
+    }
+    if (a.type == LightType::spot) {
+      EXPECT_EQ(b.spot_angle_deg, a.spot_angle_deg);
+      EXPECT_EQ(b.blend, a.blend);
+    }
+    if (a.type == LightType::area) {
+      EXPECT_EQ(b.size, a.size);
+      EXPECT_LT((b.up - a.up).norm(), 1e-6f);
+    }
+    if (a.type == LightType::directional) {
+      EXPECT_EQ(b.angle_deg, a.angle_deg);
+    }
+  }
+  // A second round trip changes nothing beyond float rounding.
+  save_rig(dir / "rig2.json", back);
+  const Rig again = load_rig(dir / "rig2.json");
+  ASSERT_EQ(again.lights.size(), back.lights.size());
+  for (size_t i = 0; i < back.lights.size(); ++i) {
+    EXPECT_EQ(again.lights[i].name, back.lights[i].name);
+    EXPECT_LT((again.lights[i].direction - back.lights[i].direction).norm(), 1e-6f);
+    EXPECT_LT((again.lights[i].position - back.lights[i].position).norm(), 1e-6f);
+  }
+}
+
+// ------------------------------------------------------------ writers
+
+TEST(ImageWriters, ExrRoundTripIsExact) {
+  TempDir dir;
+  Image img(5, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x)
+      img.at(x, y) = Vec3(std::ldexp(1.2345678f, x - 20), 0.1f * float(x * 7 + y) + 1e-3f, 12345.678f * float(y + 1));
+  img.at(0, 0) = Vec3::Zero();
+  write_exr(dir / "img.exr", img);
+  const Image back = read_image(dir / "img.exr");
+  ASSERT_EQ(back.width, 5);
+  ASSERT_EQ(back.height, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) EXPECT_EQ(back.at(x, y), img.at(x, y)) << x << "," << y;
+}
+
+TEST(ImageWriters, HalfExrRoundTripIsClose) {
+  TempDir dir;
+  Image img(4, 2);
+  for (size_t i = 0; i < img.size(); ++i) img.pixels[i] = Vec3(0.3f * i, 1.7f + i, 100.0f / (1 + i));
+  write_exr(dir / "half.exr", img, ExrPrecision::half);
+  const Image back = read_image(dir / "half.exr");
+  ASSERT_EQ(back.size(), img.size());
+  for (size_t i = 0; i < img.size(); ++i)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(back.pixels[i][c], img.pixels[i][c], 1e-3f * img.pixels[i][c] + 1e-6f);
+}
+
+TEST(ImageWriters, ScalarExrRoundTrip) {
+  TempDir dir;
+  const std::vector<float> values = {0.0f, 0.25f, 1.0f, 0.5f, 0.75f, 1.0f};
+  write_exr_scalar(dir / "mask.exr", values, 3, 2);
+  int w = 0, h = 0;
+  EXPECT_EQ(read_scalar_image(dir / "mask.exr", w, h), values);
+  EXPECT_EQ(w, 3);
+  EXPECT_EQ(h, 2);
+}
+
+TEST(ImageWriters, PngIsAReadable8BitSrgbFile) {
+  TempDir dir;
+  Image img(3, 2);
+  img.at(0, 0) = Vec3(0.0f, 0.5f, 1.0f);
+  img.at(1, 0) = Vec3(0.18f, 0.02f, 0.7f);
+  img.at(2, 0) = Vec3(2.0f, 0.001f, 0.25f);  // 2 clips to 1
+  img.at(0, 1) = Vec3(0.9f, 0.1f, 0.05f);
+  img.at(1, 1) = Vec3(0.3f, 0.3f, 0.3f);
+  img.at(2, 1) = Vec3(0.6f, 0.4f, 0.2f);
+  const fs::path path = dir / "out.png";
+  write_png(path, img);
+
+  auto in = OIIO::ImageInput::open(path.string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  EXPECT_EQ(in->spec().width, 3);
+  EXPECT_EQ(in->spec().height, 2);
+  EXPECT_EQ(in->spec().nchannels, 3);
+  EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT8);
+  std::vector<unsigned char> bytes(3 * 2 * 3);
+  ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, bytes.data()));
+  in->close();
+  // The bytes are the sRGB encoding of the clipped linear values.
+  auto encode = [](double v) {
+    v = std::clamp(v, 0.0, 1.0);
+    const double e = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+    return int(std::lround(e * 255.0));
+  };
+  for (int p = 0; p < 6; ++p)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(int(bytes[p * 3 + c]), encode(img.pixels[p][c]), 1) << "pixel " << p << " channel " << c;
+  EXPECT_EQ(bytes[0 * 3 + 2], 255);  // 1.0 is full white
+  EXPECT_EQ(bytes[2 * 3 + 0], 255);  // 2.0 clips
+  EXPECT_EQ(bytes[0], 0);
+
+  // read_image takes it as sRGB and linearises it back.
+  const Image back = read_image(path);
+  for (size_t p = 0; p < img.size(); ++p)
+    for (int c = 0; c < 3; ++c) {
+      const float expected = std::min(img.pixels[p][c], 1.0f);
+      EXPECT_NEAR(back.pixels[p][c], expected, 0.01f * expected + 0.002f) << "pixel " << p << " channel " << c;
+    }
+}
+
+TEST(ImageWriters, PngExposureScales) {
+  TempDir dir;
+  write_png(dir / "a.png", Image(1, 1, Vec3(0.1f, 0.1f, 0.1f)), 1.0f);  // x 2
+  write_png(dir / "b.png", Image(1, 1, Vec3(0.2f, 0.2f, 0.2f)), 0.0f);
+  EXPECT_EQ(read_image(dir / "a.png").pixels[0], read_image(dir / "b.png").pixels[0]);
+}
+
+TEST(ImageWriters, WritingIntoAMissingFolderIsAnInputError) {
+  TempDir dir;
+  const fs::path target = dir / "no_such_folder" / "out.exr";
+  EXPECT_MENTIONS(input_error_message([&] { write_exr(target, Image(2, 2)); }), target.string(), "folder");
+}
+
+// --------------------------------------------------------- atomic writer
+
+std::vector<std::string> folder_listing(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(folder)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(AtomicWriter, ThrowingWriterLeavesThePreviousFileIntact) {
+  TempDir dir;
+  const fs::path target = dir / "result.txt";
+  write_text(target, "the previous contents");
+  fs::path seen_temp;
+  EXPECT_THROW(write_atomically(target,
+                                [&](const fs::path& temp) {
+                                  seen_temp = temp;
+                                  std::ofstream out(temp);
+                                  out << "half a fi";
+                                  out.close();
+                                  throw std::runtime_error("disk full");
+                                }),
+               std::runtime_error);
+  EXPECT_EQ(read_text(target), "the previous contents");
+  // The temporary was beside the target, with the same extension, and is gone.
+  EXPECT_EQ(seen_temp.parent_path(), dir.path());
+  EXPECT_EQ(seen_temp.extension(), ".txt");
+  EXPECT_NE(seen_temp, target);
+  EXPECT_FALSE(fs::exists(seen_temp));
+  EXPECT_EQ(folder_listing(dir.path()), std::vector<std::string>{"result.txt"});
+}
+
+TEST(AtomicWriter, ThrowingWriterWithNoPreviousFileLeavesNothing) {
+  TempDir dir;
+  const fs::path target = dir / "new.exr";
+  EXPECT_THROW(write_atomically(target,
+                                [&](const fs::path& temp) {
+                                  write_text(temp, "x");
+                                  throw InputError(target.string(), "", "boom");
+                                }),
+               InputError);
+  EXPECT_FALSE(fs::exists(target));
+  EXPECT_TRUE(folder_listing(dir.path()).empty());
+}
+
+TEST(AtomicWriter, SuccessReplacesTheFileAndLeavesNoTemporary) {
+  TempDir dir;
+  const fs::path target = dir / "result.txt";
+  write_text(target, "old");
+  write_atomically(target, [&](const fs::path& temp) { write_text(temp, "new contents"); });
+  EXPECT_EQ(read_text(target), "new contents");
+  EXPECT_EQ(folder_listing(dir.path()), std::vector<std::string>{"result.txt"});
+  write_text_atomically(target, "text");
+  EXPECT_EQ(read_text(target), "text");
+  EXPECT_EQ(folder_listing(dir.path()), std::vector<std::string>{"result.txt"});
+}
+
+TEST(AtomicWriter, TargetThatIsAFolderIsAnInputError) {
+  TempDir dir;
+  fs::create_directory(dir / "sub");
+  EXPECT_MENTIONS(input_error_message([&] { write_text_atomically(dir / "sub", "x"); }), (dir / "sub").string(),
+                  "folder");
+}
+
+}  // namespace
+}  // namespace relight

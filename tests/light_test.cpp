@@ -1,0 +1,490 @@
+// Analytic tests of the radiometry of every light type (FORMAT.md "Lights"),
+// through the whole direct-lighting path: sample_light, the shadow ray in
+// Embree and the integrator's division by pi. A large white diffuse plane
+// z = 0 (normal +z) is lit; the illumination at a point of it (the radiance a
+// white Lambertian surface reflects = irradiance / pi) averaged over many
+// samples must match the closed form within 1 %.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "core/sampling.h"
+#include "render/integrator.h"
+#include "render/ray_scene.h"
+#include "scene/environment.h"
+#include "scene/light.h"
+#include "scene/probe.h"
+#include "scene/triangle_mesh.h"
+
+namespace relight {
+namespace {
+
+constexpr double kPiD = std::numbers::pi;
+
+// Appends an axis-aligned square (two triangles) of half-size `half`
+// centred on `centre`, lying in the plane z = centre.z().
+void add_square(TriangleMesh& mesh, const Vec3& centre, float half) {
+  const uint32_t base = uint32_t(mesh.positions.size());
+  mesh.positions.push_back(centre + Vec3(-half, -half, 0));
+  mesh.positions.push_back(centre + Vec3(half, -half, 0));
+  mesh.positions.push_back(centre + Vec3(half, half, 0));
+  mesh.positions.push_back(centre + Vec3(-half, half, 0));
+  mesh.triangles.push_back({base + 0, base + 1, base + 2});
+  mesh.triangles.push_back({base + 0, base + 2, base + 3});
+}
+
+TriangleMesh plane_mesh() {
+  TriangleMesh mesh;
+  add_square(mesh, Vec3::Zero(), 50.0f);
+  return mesh;
+}
+
+// A scene, its lighting and an integrator with direct light only.
+class LitPlane {
+ public:
+  LitPlane(TriangleMesh mesh, std::vector<Light> lights, Environment env = Environment::constant(Vec3::Zero()))
+      : mesh_(std::move(mesh)), scene_(mesh_) {
+    lighting_.lights = std::move(lights);
+    lighting_.environment = std::move(env);
+    IntegratorOptions options;
+    options.max_bounces = 0;
+    integrator_ = std::make_unique<Integrator>(scene_, lighting_, nullptr, options);
+  }
+
+  // The surface point of the plane at (x, y, 0), found by a ray from above
+  // so the normal is the one the renderer would see.
+  SurfacePoint point(float x, float y) const {
+    SurfacePoint hit;
+    EXPECT_TRUE(scene_.intersect(Vec3(x, y, 0.25f), Vec3(0, 0, -1), hit));
+    EXPECT_NEAR(hit.position.z(), 0.0f, 1e-5f);
+    EXPECT_NEAR(hit.normal.z(), 1.0f, 1e-6f);
+    return hit;
+  }
+
+  // Mean illumination at (x, y, 0) over n samples (deterministic seed).
+  Vec3 mean_illumination(float x, float y, int n, uint64_t seed = 7) const {
+    const SurfacePoint p = point(x, y);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Rng rng(seed, 0);
+    for (int i = 0; i < n; ++i) sum += integrator_->illumination(p, rng).cast<double>();
+    return (sum / n).cast<float>();
+  }
+
+ private:
+  TriangleMesh mesh_;
+  RayScene scene_;
+  Lighting lighting_;
+  std::unique_ptr<Integrator> integrator_;
+};
+
+// |value - expected| <= 1 % of expected, on every channel.
+void expect_within_1_percent(const Vec3& value, const Vec3& expected) {
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(value[c], expected[c], 0.01 * std::abs(expected[c])) << "channel " << c;
+}
+
+Light point_light(const Vec3& position, float power) {
+  Light l;
+  l.type = LightType::point;
+  l.position = position;
+  l.power = power;
+  return l;
+}
+
+// A spot straight above the origin at height h whose axis is tilted by
+// `tilt_deg` from straight down, so the origin sees it at theta = tilt.
+Light spot_light(float h, float tilt_deg, float power, float angle_deg, float blend) {
+  Light l;
+  l.type = LightType::spot;
+  l.position = Vec3(0, 0, h);
+  const float t = radians(tilt_deg);
+  l.direction = Vec3(std::sin(t), 0.0f, -std::cos(t));
+  l.power = power;
+  l.spot_angle_deg = angle_deg;
+  l.blend = blend;
+  return l;
+}
+
+Light sun(const Vec3& direction, float irradiance, float angle_deg = 0.0f) {
+  Light l;
+  l.type = LightType::directional;
+  l.direction = direction.normalized();
+  l.irradiance = irradiance;
+  l.angle_deg = angle_deg;
+  return l;
+}
+
+// ---------------------------------------------------------------- point
+
+TEST(PointLight, FacingAtDistanceGivesPowerOver4PiSquaredDSquared) {
+  const float d = 2.0f, power = 100.0f;
+  LitPlane scene(plane_mesh(), {point_light(Vec3(0, 0, d), power)});
+  const double expected = power / (4.0 * kPiD * kPiD * d * d);  // FORMAT.md: P/(4 pi^2 d^2)
+  expect_within_1_percent(scene.mean_illumination(0, 0, 64), Vec3::Constant(float(expected)));
+}
+
+TEST(PointLight, OffAxisFollowsCosineOverDistanceSquared) {
+  // Light at height 1, point 1 m to the side: d^2 = 2, cos = 1/sqrt(2).
+  const float power = 50.0f;
+  LitPlane scene(plane_mesh(), {point_light(Vec3(1, 0, 1), power)});
+  const double expected = power / (4.0 * kPiD) / 2.0 * (1.0 / std::sqrt(2.0)) / kPiD;
+  expect_within_1_percent(scene.mean_illumination(0, 0, 64), Vec3::Constant(float(expected)));
+}
+
+TEST(PointLight, ColourScalesEachChannel) {
+  Light l = point_light(Vec3(0, 0, 1.5f), 80.0f);
+  l.color = Vec3(1.0f, 0.5f, 0.25f);
+  LitPlane scene(plane_mesh(), {l});
+  const double white = 80.0 / (4.0 * kPiD * kPiD * 1.5 * 1.5);
+  expect_within_1_percent(scene.mean_illumination(0, 0, 64), Vec3(float(white), float(white * 0.5), float(white * 0.25)));
+}
+
+TEST(PointLight, DisabledLightGivesNothing) {
+  Light l = point_light(Vec3(0, 0, 1), 100.0f);
+  l.enabled = false;
+  LitPlane scene(plane_mesh(), {l});
+  EXPECT_EQ(scene.mean_illumination(0, 0, 16), Vec3::Zero());
+}
+
+TEST(PointLight, WithRadiusGivesPowerOver4PiSquaredTimesDSquaredPlusRSquared) {
+  const float d = 2.0f, r = 0.5f, power = 100.0f;
+  Light l = point_light(Vec3(0, 0, d), power);
+  l.radius = r;
+  LitPlane scene(plane_mesh(), {l});
+  // FORMAT.md: P/(4 pi^2 (d^2 + r^2)) -- a facing disc of radiance
+  // P/(4 pi^2 r^2) delivers E = pi L r^2/(d^2 + r^2).
+  const double expected = power / (4.0 * kPiD * kPiD * (d * d + r * r));
+  const Vec3 value = scene.mean_illumination(0, 0, 200000);
+  expect_within_1_percent(value, Vec3::Constant(float(expected)));
+  // And it really differs from the point-source value (by 6 %), so the
+  // radius is not ignored.
+  EXPECT_LT(value.x(), 0.97 * power / (4.0 * kPiD * kPiD * d * d));
+}
+
+TEST(PointLight, BehindTheSurfaceGivesNothing) {
+  LitPlane scene(plane_mesh(), {point_light(Vec3(0, 0, -1), 100.0f)});
+  EXPECT_EQ(scene.mean_illumination(0, 0, 16), Vec3::Zero());
+}
+
+// ----------------------------------------------------------------- spot
+
+// FORMAT.md: I(theta) = P/(4 pi) c s; s the smoothstep of the blend.
+double spot_expected(double power, double h, double theta_deg, double angle_deg, double blend) {
+  const double c = std::cos(theta_deg * kPiD / 180.0);
+  const double c0 = std::cos(angle_deg * 0.5 * kPiD / 180.0);
+  double s = 0.0;
+  if (c > c0) {
+    if (blend <= 0.0) {
+      s = 1.0;
+    } else {
+      const double t = std::clamp((c - c0) / ((1.0 - c0) * blend), 0.0, 1.0);
+      s = t * t * (3.0 - 2.0 * t);
+    }
+  }
+  const double intensity = power / (4.0 * kPiD) * c * s;
+  return intensity / (h * h) / kPiD;  // facing surface at distance h, then / pi
+}
+
+TEST(SpotLight, InsideConeWithoutBlendHasCosineFactor) {
+  const float h = 2.0f, power = 200.0f;
+  LitPlane scene(plane_mesh(), {spot_light(h, 20.0f, power, 60.0f, 0.0f)});
+  const double expected = spot_expected(power, h, 20.0, 60.0, 0.0);
+  // The factor c (cos 20 deg = 0.94) is Cycles' own: check it is applied.
+  EXPECT_NEAR(expected, power / (4.0 * kPiD * kPiD * h * h) * std::cos(20.0 * kPiD / 180.0), 1e-9);
+  expect_within_1_percent(scene.mean_illumination(0, 0, 64), Vec3::Constant(float(expected)));
+}
+
+TEST(SpotLight, OnAxisEqualsPointLight) {
+  const float h = 1.5f, power = 120.0f;
+  LitPlane scene(plane_mesh(), {spot_light(h, 0.0f, power, 30.0f, 0.0f)});
+  expect_within_1_percent(scene.mean_illumination(0, 0, 64),
+                          Vec3::Constant(float(power / (4.0 * kPiD * kPiD * h * h))));
+}
+
+TEST(SpotLight, OutsideConeGivesNothing) {
+  LitPlane scene(plane_mesh(), {spot_light(2.0f, 40.0f, 200.0f, 60.0f, 0.0f)});
+  EXPECT_EQ(scene.mean_illumination(0, 0, 64), Vec3::Zero());
+}
+
+TEST(SpotLight, OutsideConeWithBlendAndRadiusGivesNothing) {
+  Light l = spot_light(2.0f, 40.0f, 200.0f, 60.0f, 1.0f);
+  l.radius = 0.1f;
+  LitPlane scene(plane_mesh(), {l});
+  EXPECT_EQ(scene.mean_illumination(0, 0, 64), Vec3::Zero());
+}
+
+TEST(SpotLight, BlendGivesSmoothstepValue) {
+  // Cone 60 deg, blend 0.5, seen at 25 deg: t = 0.60, s = 0.648.
+  const float h = 2.0f, power = 200.0f;
+  LitPlane scene(plane_mesh(), {spot_light(h, 25.0f, power, 60.0f, 0.5f)});
+  const double expected = spot_expected(power, h, 25.0, 60.0, 0.5);
+  const double unblended = spot_expected(power, h, 25.0, 60.0, 0.0);
+  ASSERT_GT(expected, 0.5 * unblended);  // t strictly inside (0, 1)
+  ASSERT_LT(expected, 0.8 * unblended);
+  expect_within_1_percent(scene.mean_illumination(0, 0, 64), Vec3::Constant(float(expected)));
+}
+
+TEST(SpotLight, SpotFactorMatchesFormat) {
+  Light l = spot_light(1.0f, 0.0f, 1.0f, 90.0f, 0.3f);
+  const double c0 = std::cos(45.0 * kPiD / 180.0);
+  for (double c : {0.5, 0.70, 0.72, 0.75, 0.8, 0.9, 0.99, 1.0}) {
+    double s = 0.0;
+    if (c > c0) {
+      const double t = std::clamp((c - c0) / ((1.0 - c0) * 0.3), 0.0, 1.0);
+      s = t * t * (3.0 - 2.0 * t);
+    }
+    EXPECT_NEAR(spot_factor(l, float(c)), c * s, 1e-5) << "c = " << c;
+  }
+}
+
+// ----------------------------------------------------------------- area
+
+// Configuration factor from a differential area to a parallel rectangle of
+// sides a x b at distance c, the rectangle's corner on the element's normal
+// (Howell's catalogue of radiation configuration factors, case B-3):
+//   F = 1/(2 pi) [ A/sqrt(1+A^2) atan(B/sqrt(1+A^2)) + B/sqrt(1+B^2) atan(A/sqrt(1+B^2)) ],
+// A = a/c, B = b/c. (Limit a, b -> infinity: 1/4, a quarter of the plane.)
+double corner_factor(double a, double b, double c) {
+  const double A = a / c, B = b / c;
+  const double sa = std::sqrt(1 + A * A), sb = std::sqrt(1 + B * B);
+  return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2.0 * kPiD);
+}
+
+TEST(AreaLight, CornerFactorFormulaIsRight) {
+  // Sanity of the closed form against a brute-force midpoint quadrature of
+  // F = (1/pi) \int cos^2 / r^2 dA = (1/pi) \int c^2 / (x^2+y^2+c^2)^2 dA.
+  const double a = 0.7, b = 1.3, c = 0.9;
+  const int n = 800;
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = (i + 0.5) * a / n, y = (j + 0.5) * b / n;
+      const double r2 = x * x + y * y + c * c;
+      sum += c * c / (r2 * r2);
+    }
+  sum *= (a / n) * (b / n) / kPiD;
+  EXPECT_NEAR(corner_factor(a, b, c), sum, 1e-6);
+  EXPECT_NEAR(corner_factor(1e6, 1e6, 1.0), 0.25, 1e-5);
+}
+
+TEST(AreaLight, FacingOnAxisMatchesRectangleClosedForm) {
+  // A w x h rectangle at height d, centred above the point, emitting down.
+  // Uniform Lambertian radiance L = P/(4 w h) (FORMAT.md). The irradiance is
+  // E = pi L F with F the configuration factor of the whole rectangle: four
+  // corner rectangles of (w/2) x (h/2). Illumination = E/pi = L F.
+  const float w = 1.0f, h = 0.6f, d = 0.8f, power = 100.0f;
+  Light l;
+  l.type = LightType::area;
+  l.position = Vec3(0, 0, d);
+  l.direction = Vec3(0, 0, -1);
+  l.up = Vec3(0, 1, 0);
+  l.size = Vec2(w, h);
+  l.power = power;
+  LitPlane scene(plane_mesh(), {l});
+  const double radiance = power / (4.0 * w * h);
+  const double expected = radiance * 4.0 * corner_factor(w / 2.0, h / 2.0, d);
+  expect_within_1_percent(scene.mean_illumination(0, 0, 400000), Vec3::Constant(float(expected)));
+}
+
+TEST(AreaLight, UpOrientsTheHSideOffAxis) {
+  // A 2 m (w) x 0.5 m (h) light at height d with up = +y: the w side runs
+  // along x = direction x up. Seen from (0.8, 0, 0) the rectangle spans
+  // x in [-1.8, 0.2], y in [-0.25, 0.25] relative to the point; the
+  // configuration factor of an offset rectangle is the signed sum of four
+  // corner rectangles (corner_factor is odd in a and in b).
+  const float w = 2.0f, h = 0.5f, d = 0.7f, power = 100.0f;
+  Light l;
+  l.type = LightType::area;
+  l.position = Vec3(0, 0, d);
+  l.direction = Vec3(0, 0, -1);
+  l.up = Vec3(0, 1, 0);
+  l.size = Vec2(w, h);
+  l.power = power;
+  LitPlane scene(plane_mesh(), {l});
+  auto rect = [&](double x1, double x2, double y1, double y2) {
+    return corner_factor(x2, y2, d) - corner_factor(x1, y2, d) - corner_factor(x2, y1, d) + corner_factor(x1, y1, d);
+  };
+  const double radiance = power / (4.0 * w * h);
+  const double expected = radiance * rect(-1.8, 0.2, -0.25, 0.25);
+  const double swapped = radiance * rect(-1.05, -0.55, -1.0, 1.0);  // w and h exchanged
+  ASSERT_GT(std::abs(expected - swapped), 0.2 * expected);           // the test can tell them apart
+  expect_within_1_percent(scene.mean_illumination(0.8f, 0, 400000), Vec3::Constant(float(expected)));
+}
+
+TEST(AreaLight, SmallAndFarApproachesLambertianPointLimit) {
+  // A small w x h light at distance d >> w, h: E = L w h / d^2 with
+  // L = P/(4 w h), so illumination = P/(4 pi d^2).
+  const float d = 5.0f, power = 100.0f;
+  Light l;
+  l.type = LightType::area;
+  l.position = Vec3(0, 0, d);
+  l.direction = Vec3(0, 0, -1);
+  l.up = Vec3(1, 0, 0);
+  l.size = Vec2(0.05f, 0.1f);
+  l.power = power;
+  LitPlane scene(plane_mesh(), {l});
+  expect_within_1_percent(scene.mean_illumination(0, 0, 20000),
+                          Vec3::Constant(float(power / (4.0 * kPiD * d * d))));
+}
+
+TEST(AreaLight, EmittingAwayGivesNothing) {
+  Light l;
+  l.type = LightType::area;
+  l.position = Vec3(0, 0, 1);
+  l.direction = Vec3(0, 0, 1);  // emits upwards, away from the plane
+  l.up = Vec3(0, 1, 0);
+  l.size = Vec2(1, 1);
+  l.power = 100.0f;
+  LitPlane scene(plane_mesh(), {l});
+  EXPECT_EQ(scene.mean_illumination(0, 0, 1000), Vec3::Zero());
+}
+
+// ---------------------------------------------------------- directional
+
+TEST(DirectionalLight, FacingGivesIrradianceOverPi) {
+  LitPlane scene(plane_mesh(), {sun(Vec3(0, 0, -1), 4.0f)});
+  expect_within_1_percent(scene.mean_illumination(0, 0, 16), Vec3::Constant(float(4.0 / kPiD)));
+}
+
+TEST(DirectionalLight, SixtyDegreesGivesHalf) {
+  const float t = radians(60.0f);
+  LitPlane scene(plane_mesh(), {sun(Vec3(std::sin(t), 0, -std::cos(t)), 4.0f)});
+  expect_within_1_percent(scene.mean_illumination(3, -2, 16), Vec3::Constant(float(4.0 * 0.5 / kPiD)));
+}
+
+TEST(DirectionalLight, HalfDegreeDiscFacingGivesIrradianceOverPi) {
+  LitPlane scene(plane_mesh(), {sun(Vec3(0, 0, -1), 4.0f, 0.5f)});
+  expect_within_1_percent(scene.mean_illumination(0, 0, 2000), Vec3::Constant(float(4.0 / kPiD)));
+}
+
+TEST(DirectionalLight, HalfDegreeDiscAtSixtyDegreesGivesHalf) {
+  const float t = radians(60.0f);
+  LitPlane scene(plane_mesh(), {sun(Vec3(0, std::sin(t), -std::cos(t)), 3.0f, 0.5f)});
+  expect_within_1_percent(scene.mean_illumination(0, 0, 20000), Vec3::Constant(float(3.0 * 0.5 / kPiD)));
+}
+
+TEST(DirectionalLight, FromBelowGivesNothing) {
+  LitPlane scene(plane_mesh(), {sun(Vec3(0.2f, 0, 1), 4.0f, 0.5f)});
+  EXPECT_EQ(scene.mean_illumination(0, 0, 100), Vec3::Zero());
+}
+
+// ------------------------------------------------- shadows and sums
+
+TEST(Shadow, BlockerBetweenPointLightAndPlaneGivesZero) {
+  TriangleMesh mesh = plane_mesh();
+  add_square(mesh, Vec3(0, 0, 1), 0.25f);  // 0.5 m square at z = 1
+  LitPlane scene(std::move(mesh), {point_light(Vec3(0, 0, 2), 100.0f)});
+  EXPECT_EQ(scene.mean_illumination(0, 0, 64), Vec3::Zero());
+  // Outside the shadow (which reaches |x| = 0.5) the light arrives in full:
+  // distance^2 = 4 + 4 = 8, cos = 2/sqrt(8).
+  const double lit = 100.0 / (4.0 * kPiD) / 8.0 * (2.0 / std::sqrt(8.0)) / kPiD;
+  expect_within_1_percent(scene.mean_illumination(2, 0, 64), Vec3::Constant(float(lit)));
+}
+
+TEST(Shadow, BlockerShadowsEveryLightType) {
+  TriangleMesh mesh = plane_mesh();
+  add_square(mesh, Vec3(0, 0, 1), 2.0f);  // 4 m square at z = 1 over the origin
+  Light area;
+  area.type = LightType::area;
+  area.position = Vec3(0, 0, 2);
+  area.direction = Vec3(0, 0, -1);
+  area.up = Vec3(0, 1, 0);
+  area.size = Vec2(1, 1);
+  area.power = 100.0f;
+  Light soft_point = point_light(Vec3(0, 0, 2), 100.0f);
+  soft_point.radius = 0.3f;
+  LitPlane scene(std::move(mesh),
+                 {soft_point, spot_light(2.0f, 0.0f, 100.0f, 60.0f, 0.2f), area, sun(Vec3(0, 0, -1), 5.0f, 0.5f)});
+  EXPECT_EQ(scene.mean_illumination(0, 0, 2000), Vec3::Zero());
+}
+
+TEST(Lights, ContributionsOfSeveralLightsAdd) {
+  const Light a = point_light(Vec3(0, 0, 2), 100.0f);
+  const Light b = sun(Vec3(0, 0, -1), 2.0f);
+  LitPlane scene(plane_mesh(), {a, b});
+  const double expected = 100.0 / (4.0 * kPiD * kPiD * 4.0) + 2.0 / kPiD;
+  expect_within_1_percent(scene.mean_illumination(0, 0, 64), Vec3::Constant(float(expected)));
+}
+
+// ---------------------------------------------------------- environment
+
+TEST(Environment, ConstantEnvironmentOverOpenPlaneGivesItsRadiance) {
+  // White furnace for a plane: a white Lambertian surface under a constant
+  // sky of radiance B reflects B (irradiance pi B, divided by pi).
+  const Vec3 b(0.3f, 0.6f, 1.2f);
+  LitPlane scene(plane_mesh(), {}, Environment::constant(b));
+  expect_within_1_percent(scene.mean_illumination(0, 0, 200000), b);
+}
+
+TEST(Environment, ScaleMultipliesTheEnvironment) {
+  Environment env = Environment::constant(Vec3::Ones());
+  env.set_scale(0.25f);
+  LitPlane scene(plane_mesh(), {}, env);
+  expect_within_1_percent(scene.mean_illumination(0, 0, 200000), Vec3::Constant(0.25f));
+}
+
+// A probe whose frame is forward = +y, up = +z (world up is the probe's up).
+Probe equirect_probe(int w, int h) {
+  Probe p;
+  p.path = "synthetic";
+  p.mapping = ProbeMapping::equirect;
+  p.forward = Vec3(0, 1, 0);
+  p.up = Vec3(0, 0, 1);
+  p.image = Image(w, h, Vec3(0.2f, 0.3f, 0.4f));
+  return p;
+}
+
+TEST(Environment, UniformEquirectProbeOverOpenPlaneGivesItsRadiance) {
+  LitPlane scene(plane_mesh(), {}, Environment::from_probes({equirect_probe(32, 16)}));
+  expect_within_1_percent(scene.mean_illumination(0, 0, 200000), Vec3(0.2f, 0.3f, 0.4f));
+}
+
+TEST(Environment, UniformMirrorballProbeOverOpenPlaneGivesItsRadiance) {
+  // The ball looks straight up: the singular direction "behind the ball"
+  // (+forward) is the zenith, and the rim pixels the probe sampler cannot
+  // reach are around it; MIS with the cosine lobe must still cover them.
+  Probe p;
+  p.path = "synthetic";
+  p.mapping = ProbeMapping::mirrorball;
+  p.forward = Vec3(0, 0, 1);
+  p.up = Vec3(0, 1, 0);
+  p.image = Image(24, 24, Vec3(0.5f, 0.25f, 1.0f));
+  LitPlane scene(plane_mesh(), {}, Environment::from_probes({p}));
+  expect_within_1_percent(scene.mean_illumination(0, 0, 200000), Vec3(0.5f, 0.25f, 1.0f));
+}
+
+TEST(Environment, EquirectProbeWithBrightPatchMatchesExactIrradiance) {
+  // Probe up = world +z, so rows 0..H/2-1 are the sky above the plane. A
+  // pixel of row r spans polar angles [r pi/H, (r+1) pi/H] and azimuth
+  // 2 pi/W; its cosine-weighted solid angle is exactly
+  //   (2 pi/W) (sin^2 theta1 - sin^2 theta0)/2,
+  // so illumination = (1/pi) sum over sky pixels of L x that.
+  const int w = 32, h = 16;
+  Probe p = equirect_probe(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) p.image.at(x, y) = Vec3(0.05f, 0.1f, 0.2f) * float(1 + (x + 2 * y) % 3);
+  for (int y = 2; y < 5; ++y)
+    for (int x = 20; x < 23; ++x) p.image.at(x, y) = Vec3(60.0f, 40.0f, 20.0f);  // a sun-like patch
+  for (int x = 0; x < w; ++x) p.image.at(x, 12) = Vec3(50.0f, 50.0f, 50.0f);  // below the plane: unseen
+  Eigen::Vector3d expected = Eigen::Vector3d::Zero();
+  for (int y = 0; y < h / 2; ++y) {
+    const double t0 = y * kPiD / h, t1 = (y + 1) * kPiD / h;
+    const double weight = (2 * kPiD / w) * (std::pow(std::sin(t1), 2) - std::pow(std::sin(t0), 2)) / 2;
+    for (int x = 0; x < w; ++x) expected += p.image.at(x, y).cast<double>() * weight;
+  }
+  expected /= kPiD;
+  LitPlane scene(plane_mesh(), {}, Environment::from_probes({p}));
+  expect_within_1_percent(scene.mean_illumination(0, 0, 1000000), expected.cast<float>());
+}
+
+TEST(Environment, ZeroScaleGivesNothing) {
+  Environment env = Environment::constant(Vec3::Ones());
+  env.set_scale(0.0f);
+  LitPlane scene(plane_mesh(), {}, env);
+  EXPECT_EQ(scene.mean_illumination(0, 0, 1000), Vec3::Zero());
+}
+
+}  // namespace
+}  // namespace relight

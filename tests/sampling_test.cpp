@@ -1,0 +1,472 @@
+// Sampling: the piecewise-constant distributions sample their own pdf, the
+// random number generator is deterministic, the standard warps have the right
+// moments; and the camera (FORMAT.md "Camera"): pixel-centre convention, and
+// project() inverting ray_direction().
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <vector>
+
+#include "core/sampling.h"
+#include "scene/camera.h"
+
+namespace relight {
+namespace {
+
+constexpr double kPiD = std::numbers::pi;
+
+// Pearson's chi-square statistic of observed counts against expected
+// probabilities; bins of probability 0 must stay empty.
+double chi_square(const std::vector<int>& observed, const std::vector<double>& probability, int n, int& dof) {
+  double x2 = 0.0;
+  dof = -1;  // k bins, k - 1 degrees of freedom
+  for (size_t i = 0; i < observed.size(); ++i) {
+    const double expected = probability[i] * n;
+    if (expected <= 0.0) {
+      EXPECT_EQ(observed[i], 0) << "bin " << i << " has probability 0 but was sampled";
+      continue;
+    }
+    x2 += (observed[i] - expected) * (observed[i] - expected) / expected;
+    ++dof;
+  }
+  return x2;
+}
+
+// Accept up to ~5 standard deviations above the mean of chi-square(dof).
+void expect_chi_square_ok(double x2, int dof) {
+  EXPECT_LT(x2, dof + 5.0 * std::sqrt(2.0 * dof)) << "chi-square " << x2 << " with " << dof << " dof";
+}
+
+// ------------------------------------------------------------- Rng
+
+TEST(Rng, SameSeedAndStreamGiveTheSameSequence) {
+  Rng a(42, 7, 3), b(42, 7, 3);
+  for (int i = 0; i < 1000; ++i) ASSERT_EQ(a.next_u32(), b.next_u32()) << i;
+  Rng c(42, 7, 3), d(42, 7, 3);
+  for (int i = 0; i < 1000; ++i) ASSERT_EQ(c.uniform(), d.uniform()) << i;
+}
+
+TEST(Rng, DifferentSeedOrStreamGiveDifferentSequences) {
+  auto first = [](Rng r) {
+    std::vector<uint32_t> v;
+    for (int i = 0; i < 8; ++i) v.push_back(r.next_u32());
+    return v;
+  };
+  const auto base = first(Rng(42, 7, 3));
+  EXPECT_NE(first(Rng(43, 7, 3)), base);
+  EXPECT_NE(first(Rng(42, 8, 3)), base);
+  EXPECT_NE(first(Rng(42, 7, 4)), base);
+  EXPECT_NE(first(Rng(42, 3, 7)), base);  // the stream arguments are not symmetric
+}
+
+TEST(Rng, NeighbouringPixelStreamsAreUncorrelated) {
+  // The first values of streams (seed, i) for consecutive i: mean 1/2 and no
+  // correlation between consecutive streams.
+  const int n = 20000;
+  std::vector<double> x(n);
+  for (int i = 0; i < n; ++i) x[i] = Rng(1, uint64_t(i)).uniform();
+  double mean = 0.0, corr = 0.0;
+  for (int i = 0; i < n; ++i) mean += x[i];
+  mean /= n;
+  for (int i = 0; i + 1 < n; ++i) corr += (x[i] - 0.5) * (x[i + 1] - 0.5);
+  corr /= (n - 1) / 12.0;  // normalised by the variance 1/12
+  EXPECT_NEAR(mean, 0.5, 0.01);
+  EXPECT_NEAR(corr, 0.0, 0.04);
+}
+
+TEST(Rng, UniformIsInUnitIntervalWithUniformHistogram) {
+  Rng rng(5, 0);
+  const int n = 200000, bins = 50;
+  std::vector<int> hist(bins, 0);
+  for (int i = 0; i < n; ++i) {
+    const float u = rng.uniform();
+    ASSERT_GE(u, 0.0f);
+    ASSERT_LT(u, 1.0f);
+    ++hist[std::min(int(u * bins), bins - 1)];
+  }
+  int dof = 0;
+  const double x2 = chi_square(hist, std::vector<double>(bins, 1.0 / bins), n, dof);
+  expect_chi_square_ok(x2, dof);
+}
+
+// ---------------------------------------------------- Distribution1D
+
+TEST(Distribution1D, PdfIsWeightOverMean) {
+  const Distribution1D dist({1, 0, 3, 6, 0, 2});
+  EXPECT_FLOAT_EQ(dist.total(), 12.0f);
+  EXPECT_EQ(dist.size(), 6);
+  // Density on [0,1): bin width 1/6, so pdf = w * 6 / 12.
+  const float expected[] = {0.5f, 0.0f, 1.5f, 3.0f, 0.0f, 1.0f};
+  for (int i = 0; i < 6; ++i) EXPECT_FLOAT_EQ(dist.pdf(i), expected[i]) << i;
+}
+
+TEST(Distribution1D, SamplesFollowThePdf) {
+  const std::vector<float> weights = {1, 0, 3, 6, 0, 2, 0.5f, 0, 0, 4};
+  const Distribution1D dist(weights);
+  double total = 0.0;
+  for (float w : weights) total += w;
+  std::vector<double> prob;
+  for (float w : weights) prob.push_back(w / total);
+
+  Rng rng(17, 0);
+  const int n = 200000;
+  std::vector<int> hist(weights.size(), 0);
+  // The continuous position (bin + offset)/n must be uniform inside each
+  // bin: histogram it on a 4x finer grid.
+  std::vector<int> fine(weights.size() * 4, 0);
+  for (int i = 0; i < n; ++i) {
+    float offset = -1.0f, pdf = -1.0f;
+    const int bin = dist.sample(rng.uniform(), offset, pdf);
+    ASSERT_GE(bin, 0);
+    ASSERT_LT(bin, int(weights.size()));
+    ASSERT_GE(offset, 0.0f);
+    ASSERT_LT(offset, 1.0f);
+    ASSERT_FLOAT_EQ(pdf, dist.pdf(bin));
+    ++hist[bin];
+    ++fine[bin * 4 + std::min(int(offset * 4), 3)];
+  }
+  int dof = 0;
+  const double x2 = chi_square(hist, prob, n, dof);
+  expect_chi_square_ok(x2, dof);
+  std::vector<double> fine_prob;
+  for (double p : prob)
+    for (int k = 0; k < 4; ++k) fine_prob.push_back(p / 4);
+  const double x2_fine = chi_square(fine, fine_prob, n, dof);
+  expect_chi_square_ok(x2_fine, dof);
+}
+
+TEST(Distribution1D, IsTheInverseCdf) {
+  // With weights {1, 3}: cdf(0.5) = 0.25, so u = 0.125 lies half-way
+  // through bin 0 and u = 0.625 half-way through bin 1.
+  const Distribution1D dist({1, 3});
+  float offset, pdf;
+  EXPECT_EQ(dist.sample(0.125f, offset, pdf), 0);
+  EXPECT_NEAR(offset, 0.5f, 1e-6f);
+  EXPECT_FLOAT_EQ(pdf, 0.5f);
+  EXPECT_EQ(dist.sample(0.625f, offset, pdf), 1);
+  EXPECT_NEAR(offset, 0.5f, 1e-6f);
+  EXPECT_FLOAT_EQ(pdf, 1.5f);
+  EXPECT_EQ(dist.sample(0.0f, offset, pdf), 0);
+  EXPECT_EQ(dist.sample(0x1.fffffep-1f, offset, pdf), 1);
+}
+
+TEST(Distribution1D, NeverLandsInEmptyBinsEvenAtTheEnds) {
+  const Distribution1D dist({0, 0, 2, 0, 0});
+  float offset, pdf;
+  for (float u : {0.0f, 1e-7f, 0.3f, 0.5f, 0.9999f, 0x1.fffffep-1f}) {
+    EXPECT_EQ(dist.sample(u, offset, pdf), 2) << u;
+    EXPECT_FLOAT_EQ(pdf, 5.0f);
+  }
+}
+
+TEST(Distribution1D, NegativeWeightsCountAsZero) {
+  const Distribution1D dist({-5, 1, 1});
+  EXPECT_FLOAT_EQ(dist.total(), 2.0f);
+  EXPECT_EQ(dist.pdf(0), 0.0f);
+  float offset, pdf;
+  EXPECT_NE(dist.sample(0.0f, offset, pdf), 0);
+}
+
+TEST(Distribution1D, AllZeroWeightsSampleUniformly) {
+  const Distribution1D dist({0, 0, 0, 0});
+  float offset, pdf;
+  EXPECT_EQ(dist.sample(0.6f, offset, pdf), 2);
+  EXPECT_NEAR(offset, 0.4f, 1e-5f);
+  EXPECT_FLOAT_EQ(pdf, 1.0f);
+}
+
+// ---------------------------------------------------- Distribution2D
+
+TEST(Distribution2D, SamplesFollowThePdfAndPdfIntegratesToOne) {
+  const int w = 8, h = 5;
+  std::vector<float> weights(w * h);
+  Rng init(3, 0);
+  for (int i = 0; i < w * h; ++i) weights[i] = (i % 7 == 3) ? 0.0f : 0.1f + 5.0f * init.uniform();
+  weights[2 * w + 6] = 40.0f;  // one bright cell
+  for (int x = 0; x < w; ++x) weights[4 * w + x] = 0.0f;  // an empty row
+  const Distribution2D dist(weights, w, h);
+  ASSERT_FALSE(dist.empty());
+
+  double total = 0.0;
+  for (float v : weights) total += v;
+  std::vector<double> prob;
+  for (float v : weights) prob.push_back(v / total);
+
+  // The pdf on the unit square integrates to 1 and is weight / mean weight.
+  double integral = 0.0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float pdf = dist.pdf(Vec2((x + 0.5f) / w, (y + 0.5f) / h));
+      EXPECT_NEAR(pdf, weights[y * w + x] / (total / (w * h)), 1e-4 * (1 + pdf)) << x << "," << y;
+      integral += pdf / (w * h);
+    }
+  EXPECT_NEAR(integral, 1.0, 1e-5);
+
+  Rng rng(4, 0);
+  const int n = 200000;
+  std::vector<int> hist(w * h, 0);
+  int pdf_mismatches = 0;
+  for (int i = 0; i < n; ++i) {
+    float pdf = -1.0f;
+    const Vec2 uv = dist.sample(rng.uniform2(), pdf);
+    ASSERT_GE(uv.x(), 0.0f);
+    ASSERT_LT(uv.x(), 1.0f);
+    ASSERT_GE(uv.y(), 0.0f);
+    ASSERT_LT(uv.y(), 1.0f);
+    if (std::abs(pdf - dist.pdf(uv)) > 1e-4f * pdf) {
+      ++pdf_mismatches;
+      ADD_FAILURE() << "sample " << i << ": returned pdf " << pdf << " but pdf(uv) = " << dist.pdf(uv)
+                    << " at uv = " << uv.transpose();
+    }
+    ++hist[int(uv.y() * h) * w + int(uv.x() * w)];
+  }
+  // KNOWN BUG in src/core/sampling.cpp Distribution2D::sample (see
+  // SampleStaysInsideTheSampledCell): with this seed sample 95965 draws the
+  // end of cell (6, 2) with offset 0.99999994, (6 + offset) rounds to 7 in
+  // float, and uv lands in cell (7, 2) while the pdf of cell (6, 2) is
+  // returned. Do not relax this: fix the source.
+  EXPECT_EQ(pdf_mismatches, 0);
+  int dof = 0;
+  const double x2 = chi_square(hist, prob, n, dof);
+  expect_chi_square_ok(x2, dof);
+}
+
+TEST(Distribution2D, SampleStaysInsideTheSampledCell) {
+  // KNOWN BUG (src/core/sampling.cpp, Distribution2D::sample): it returns
+  // (x + ox) / width with ox <= 0x1.fffffep-1; for x >= 2 the float sum
+  // x + ox rounds up to x + 1, so uv falls in the next cell, whose pdf can
+  // differ arbitrarily (here: 0) from the pdf returned. Deterministic case:
+  // a single non-empty cell x = 3 of 8, u.x at the top of [0, 1).
+  std::vector<float> weights(8, 0.0f);
+  weights[3] = 1.0f;
+  const Distribution2D dist(weights, 8, 1);
+  for (float ux : {0.5f, 0.999f, 0.9999999f, 0x1.fffffep-1f}) {
+    float pdf = -1.0f;
+    const Vec2 uv = dist.sample(Vec2(ux, 0.5f), pdf);
+    EXPECT_FLOAT_EQ(pdf, 8.0f);
+    EXPECT_EQ(int(uv.x() * 8), 3) << "u.x = " << ux << " gave uv.x = " << uv.x();
+    EXPECT_FLOAT_EQ(dist.pdf(uv), pdf) << "u.x = " << ux;
+  }
+  // The same in y: one non-empty row y = 3 of 8.
+  std::vector<float> column(8, 0.0f);
+  column[3] = 1.0f;
+  const Distribution2D tall(column, 1, 8);
+  float pdf = -1.0f;
+  const Vec2 uv = tall.sample(Vec2(0.5f, 0x1.fffffep-1f), pdf);
+  EXPECT_EQ(int(uv.y() * 8), 3) << "uv.y = " << uv.y();
+  EXPECT_FLOAT_EQ(tall.pdf(uv), pdf);
+}
+
+// -------------------------------------------------------------- warps
+
+TEST(Warps, UniformSphereIsUnitAndUnbiased) {
+  Rng rng(8, 0);
+  const int n = 100000;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double zz = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 d = sample_uniform_sphere(rng.uniform2());
+    ASSERT_NEAR(d.norm(), 1.0f, 1e-5f);
+    mean += d.cast<double>();
+    zz += d.z() * d.z();
+  }
+  mean /= n;
+  EXPECT_LT(mean.norm(), 0.01);
+  EXPECT_NEAR(zz / n, 1.0 / 3.0, 0.005);  // E[z^2] = 1/3 on the sphere
+}
+
+TEST(Warps, CosineHemisphereHasCosineDensity) {
+  Rng rng(9, 0);
+  const int n = 100000;
+  double z_mean = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 d = sample_cosine_hemisphere(rng.uniform2());
+    ASSERT_NEAR(d.norm(), 1.0f, 1e-5f);
+    ASSERT_GE(d.z(), 0.0f);
+    z_mean += d.z();
+  }
+  EXPECT_NEAR(z_mean / n, 2.0 / 3.0, 0.005);  // E[cos] under cos/pi = 2/3
+}
+
+TEST(Warps, ConcentricDiscIsUniform) {
+  Rng rng(10, 0);
+  const int n = 100000;
+  double r2 = 0.0;
+  int first_quadrant = 0;
+  for (int i = 0; i < n; ++i) {
+    const Vec2 p = sample_concentric_disc(rng.uniform2());
+    ASSERT_LE(p.squaredNorm(), 1.0f + 1e-6f);
+    r2 += p.squaredNorm();
+    if (p.x() > 0 && p.y() > 0) ++first_quadrant;
+  }
+  EXPECT_NEAR(r2 / n, 0.5, 0.005);  // E[r^2] = 1/2 for a uniform disc
+  EXPECT_NEAR(double(first_quadrant) / n, 0.25, 0.005);
+}
+
+TEST(Warps, UniformConeStaysInsideAndIsUniform) {
+  Rng rng(11, 0);
+  const float cos_max = std::cos(radians(20.0f));
+  const int n = 100000;
+  double z_mean = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 d = sample_uniform_cone(rng.uniform2(), cos_max);
+    ASSERT_NEAR(d.norm(), 1.0f, 1e-5f);
+    ASSERT_GE(d.z(), cos_max - 1e-6f);
+    z_mean += d.z();
+  }
+  EXPECT_NEAR(z_mean / n, (1.0 + cos_max) / 2.0, 1e-4);
+}
+
+TEST(Warps, PowerHeuristic) {
+  EXPECT_FLOAT_EQ(power_heuristic(1.0f, 1.0f), 0.5f);
+  EXPECT_FLOAT_EQ(power_heuristic(3.0f, 1.0f), 0.9f);
+  EXPECT_FLOAT_EQ(power_heuristic(0.0f, 0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(power_heuristic(2.0f, 0.5f) + power_heuristic(0.5f, 2.0f), 1.0f);
+}
+
+TEST(Warps, OrthonormalBasisIsRightHanded) {
+  Rng rng(12, 0);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 n = sample_uniform_sphere(rng.uniform2());
+    Vec3 t, b;
+    orthonormal_basis(n, t, b);
+    ASSERT_NEAR(t.norm(), 1.0f, 1e-5f);
+    ASSERT_NEAR(b.norm(), 1.0f, 1e-5f);
+    ASSERT_NEAR(t.dot(n), 0.0f, 1e-5f);
+    ASSERT_NEAR(b.dot(n), 0.0f, 1e-5f);
+    ASSERT_NEAR(t.dot(b), 0.0f, 1e-5f);
+    ASSERT_LT((t.cross(b) - n).norm(), 1e-5f);
+    ASSERT_LT((to_world(Vec3(0, 0, 1), n) - n).norm(), 1e-6f);
+  }
+}
+
+// -------------------------------------------------------------- camera
+
+struct CameraCase {
+  CameraSpec spec;
+  int width, height;
+};
+
+std::vector<CameraCase> camera_cases() {
+  CameraCase a;  // the FORMAT.md example: up not orthogonal to the view
+  a.spec.position = Vec3(7.0f, -6.5f, 4.0f);
+  a.spec.look_at = Vec3(0.0f, 0.0f, 0.8f);
+  a.spec.up = Vec3(0, 0, 1);
+  a.spec.vfov_deg = 35.0f;
+  a.width = 64;
+  a.height = 48;
+  CameraCase b;  // portrait, wide angle, tilted up vector
+  b.spec.position = Vec3(-1, 2, 0.5f);
+  b.spec.look_at = Vec3(3, 1, -0.5f);
+  b.spec.up = Vec3(0.2f, 0.1f, 1.0f);
+  b.spec.vfov_deg = 80.0f;
+  b.width = 30;
+  b.height = 50;
+  return {a, b};
+}
+
+// FORMAT.md's ray for pixel (col, row), computed in double from the text.
+Eigen::Vector3d format_ray(const CameraSpec& s, int w, int h, int col, int row) {
+  const Eigen::Vector3d pos = s.position.cast<double>(), at = s.look_at.cast<double>(), up = s.up.cast<double>();
+  const Eigen::Vector3d forward = (at - pos).normalized();
+  const Eigen::Vector3d right = forward.cross(up).normalized();
+  const Eigen::Vector3d up2 = right.cross(forward);
+  const double x = 2.0 * (col + 0.5) / w - 1.0, y = 1.0 - 2.0 * (row + 0.5) / h;
+  const double t = std::tan(s.vfov_deg * kPiD / 360.0);
+  return (forward + x * t * (double(w) / h) * right + y * t * up2).normalized();
+}
+
+TEST(Camera, PixelCentreRayIsFormatsFormula) {
+  for (const auto& c : camera_cases()) {
+    const Camera cam(c.spec, c.width, c.height);
+    for (int row = 0; row < c.height; row += 7)
+      for (int col = 0; col < c.width; col += 5) {
+        const Vec3 d = cam.ray_direction(col + 0.5f, row + 0.5f);
+        EXPECT_NEAR(d.norm(), 1.0f, 1e-5f);
+        EXPECT_LT((d.cast<double>() - format_ray(c.spec, c.width, c.height, col, row)).norm(), 2e-6)
+            << "pixel " << col << "," << row;
+      }
+  }
+}
+
+TEST(Camera, ImageCentreLooksAtLookAtAndRowZeroIsTop) {
+  const CameraCase c = camera_cases()[0];
+  const Camera cam(c.spec, c.width, c.height);
+  const Vec3 forward = (c.spec.look_at - c.spec.position).normalized();
+  EXPECT_LT((cam.ray_direction(c.width / 2.0f, c.height / 2.0f) - forward).norm(), 1e-6f);
+  EXPECT_LT((cam.forward() - forward).norm(), 1e-6f);
+  // Row 0 is the top: its rays point more along world up than the last row's.
+  EXPECT_GT(cam.ray_direction(c.width / 2.0f, 0.5f).z(), cam.ray_direction(c.width / 2.0f, c.height - 0.5f).z());
+  // Column 0 is on the left: right = forward x up.
+  const Vec3 right = forward.cross(c.spec.up).normalized();
+  EXPECT_LT(cam.ray_direction(0.5f, c.height / 2.0f).dot(right), 0.0f);
+  EXPECT_GT(cam.ray_direction(c.width - 0.5f, c.height / 2.0f).dot(right), 0.0f);
+}
+
+TEST(Camera, VerticalFieldOfViewSpansTheImageHeight) {
+  for (const auto& c : camera_cases()) {
+    const Camera cam(c.spec, c.width, c.height);
+    const Vec3 top = cam.ray_direction(c.width / 2.0f, 0.0f);
+    const Vec3 bottom = cam.ray_direction(c.width / 2.0f, float(c.height));
+    EXPECT_NEAR(std::acos(double(top.dot(bottom))) * 180.0 / kPiD, c.spec.vfov_deg, 1e-3);
+    // Square pixels: a pixel step is the same angle horizontally and vertically at the centre.
+    const Vec3 centre = cam.ray_direction(c.width / 2.0f, c.height / 2.0f);
+    const double dx = std::acos(double(centre.dot(cam.ray_direction(c.width / 2.0f + 1, c.height / 2.0f))));
+    const double dy = std::acos(double(centre.dot(cam.ray_direction(c.width / 2.0f, c.height / 2.0f + 1))));
+    EXPECT_NEAR(dx, dy, 1e-3 * dy);
+  }
+}
+
+TEST(Camera, ProjectInvertsRayDirection) {
+  Rng rng(21, 0);
+  for (const auto& c : camera_cases()) {
+    const Camera cam(c.spec, c.width, c.height);
+    for (int i = 0; i < 2000; ++i) {
+      const Vec2 pixel(rng.uniform() * c.width, rng.uniform() * c.height);
+      const float depth = 0.5f + 20.0f * rng.uniform();
+      const Vec3 p = c.spec.position + depth * cam.ray_direction(pixel.x(), pixel.y());
+      const auto back = cam.project(p);
+      ASSERT_TRUE(back.has_value());
+      ASSERT_LT((*back - pixel).norm(), 2e-3f) << "pixel " << pixel.transpose() << " depth " << depth;
+    }
+  }
+}
+
+TEST(Camera, RayDirectionInvertsProject) {
+  Rng rng(22, 0);
+  const CameraCase c = camera_cases()[1];
+  const Camera cam(c.spec, c.width, c.height);
+  int in_front = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 p = c.spec.position + 10.0f * sample_uniform_sphere(rng.uniform2());
+    const auto pixel = cam.project(p);
+    const bool behind = (p - c.spec.position).dot(cam.forward()) <= 0.0f;
+    if (behind) {
+      EXPECT_FALSE(pixel.has_value());
+      continue;
+    }
+    ASSERT_TRUE(pixel.has_value());
+    ++in_front;
+    // Skip points nearly sideways, where the image position is huge.
+    if ((p - c.spec.position).normalized().dot(cam.forward()) < 0.2f) continue;
+    const Vec3 d = cam.ray_direction(pixel->x(), pixel->y());
+    ASSERT_LT((d - (p - c.spec.position).normalized()).norm(), 1e-4f);
+  }
+  EXPECT_GT(in_front, 900);
+}
+
+TEST(Camera, ProjectsPixelCentresAndCorners) {
+  const CameraCase c = camera_cases()[0];
+  const Camera cam(c.spec, c.width, c.height);
+  EXPECT_LT((*cam.project(c.spec.look_at) - Vec2(c.width / 2.0f, c.height / 2.0f)).norm(), 1e-3f);
+  // A point on FORMAT's ray of pixel (3, 5) projects to that pixel's centre.
+  const Vec3 p = c.spec.position + 4.0f * format_ray(c.spec, c.width, c.height, 3, 5).cast<float>();
+  EXPECT_LT((*cam.project(p) - Vec2(3.5f, 5.5f)).norm(), 1e-3f);
+  EXPECT_FALSE(cam.project(c.spec.position - cam.forward()).has_value());
+  EXPECT_FALSE(cam.project(c.spec.position).has_value());
+}
+
+}  // namespace
+}  // namespace relight
