@@ -13,3 +13,13 @@ add_executable(cli_test cli_test.cpp)
 target_link_libraries(cli_test PRIVATE relight_cli GTest::gtest_main)
 target_compile_definitions(cli_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 gtest_discover_tests(cli_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+
+add_executable(probe_lights_test probe_lights_test.cpp)
+target_link_libraries(probe_lights_test PRIVATE relight_analysis GTest::gtest_main)
+target_compile_definitions(probe_lights_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+gtest_discover_tests(probe_lights_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+
+add_executable(fit_test fit_test.cpp)
+target_link_libraries(fit_test PRIVATE relight_analysis GTest::gtest_main)
+target_compile_definitions(fit_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+gtest_discover_tests(fit_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900)

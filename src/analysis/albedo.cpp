@@ -12,16 +12,6 @@ constexpr float kMinRelativeLight = 0.01f;    // below this share of the median 
 constexpr float kMaxAlbedo = 10.0f;           // guards against division blow-ups
 constexpr int kFillPasses = 256;
 
-// Pixels (x,y) and (nx,ny) see the same surface: similar normal, similar depth.
-bool same_surface(const GBuffer& g, int x, int y, int nx, int ny) {
-  const GBufferSample& a = g.central(x, y);
-  const GBufferSample& b = g.central(nx, ny);
-  if (!a.hit || !b.hit) return false;
-  if (a.surface.prim == b.surface.prim) return true;
-  return a.surface.geometric_normal.dot(b.surface.geometric_normal) > 0.9f &&
-         std::abs(a.surface.distance - b.surface.distance) < 0.03f * a.surface.distance;
-}
-
 }  // namespace
 
 AlbedoImages recover_albedo(const Image& photo, const IlluminationImages& illum, const GBuffer& g) {
@@ -72,7 +62,7 @@ AlbedoImages recover_albedo(const Image& photo, const IlluminationImages& illum,
           for (int dx = -1; dx <= 1; ++dx) {
             const int nx = x + dx, ny = y + dy;
             if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-            if (known[size_t(ny) * w + nx] != 1 || !same_surface(g, x, y, nx, ny)) continue;
+            if (known[size_t(ny) * w + nx] != 1 || !g.same_surface(x, y, nx, ny)) continue;
             acc += out.albedo.at(nx, ny);
             ++n;
           }

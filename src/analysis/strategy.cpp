@@ -1,6 +1,7 @@
 #include "analysis/strategy.h"
 
 #include "analysis/probe_cleanup.h"
+#include "analysis/probe_lights.h"
 #include "core/error.h"
 
 namespace relight {

@@ -1,7 +1,9 @@
 // PhotoAlbedo: the albedo of a surface point that light bounces off, taken
-// from the recovered albedo image where the camera sees that point, and a
-// default elsewhere (the mean recovered albedo: surfaces the photo does not
-// show are assumed to be like those it does).
+// from the recovered albedo image where the camera sees that point; where it
+// does not (behind a column, under a table), the mean albedo the photo shows
+// of the same triangle; for a triangle the photo does not show at all, a
+// default (the mean recovered albedo: unseen surfaces are assumed to be like
+// those seen).
 #pragma once
 
 #include "core/image.h"
@@ -20,7 +22,8 @@ class PhotoAlbedo final : public SurfaceAlbedo {
   const Camera& camera_;
   const GBuffer& gbuffer_;
   const Image& albedo_;
-  Vec3 unseen_;
+  std::vector<Vec3> triangle_mean_;  // the default where a triangle is unseen
+
 };
 
 }  // namespace relight

@@ -47,6 +47,7 @@ int run(std::span<const std::string> args) {
   add_render_command(app, action);
   add_rig_command(app, action);
   add_compare_command(app, action);
+  add_fit_command(app, action);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 wants them reversed, without argv[0]
   try {

@@ -214,7 +214,10 @@ Rig load_rig(const fs::path& path) {
 
 std::string scene_to_json(const Scene& scene, const fs::path& folder) {
   auto v3 = [](const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); };
-  auto relative = [&](const fs::path& p) { return p.lexically_relative(folder).generic_string(); };
+  const fs::path base = fs::absolute(folder).lexically_normal();
+  auto relative = [&](const fs::path& p) {
+    return fs::absolute(p).lexically_normal().lexically_relative(base).generic_string();
+  };
   json j;
   j["format"] = "relight-scene/1";
   j["photo"] = relative(scene.photo_path);

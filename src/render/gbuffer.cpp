@@ -35,6 +35,15 @@ GBuffer::GBuffer(const Camera& camera, const RayScene& scene, int samples_per_pi
   if (!any) throw InputError(scene_file, "/camera", "the camera sees no geometry: check position, look_at and the mesh");
 }
 
+bool GBuffer::same_surface(int x, int y, int nx, int ny) const {
+  const GBufferSample& a = central(x, y);
+  const GBufferSample& b = central(nx, ny);
+  if (!a.hit || !b.hit) return false;
+  if (a.surface.prim == b.surface.prim) return true;
+  return a.surface.geometric_normal.dot(b.surface.geometric_normal) > 0.9f &&
+         std::abs(a.surface.distance - b.surface.distance) < 0.03f * a.surface.distance;
+}
+
 Vec2 GBuffer::sample_position(int x, int y, int k) const {
   // Jittered grid: one sample in each cell of a grid x grid stratification.
   Rng rng(seed_ ^ 0x6b75ull, size_t(y) * width_ + x, uint64_t(k));

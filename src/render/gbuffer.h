@@ -35,6 +35,9 @@ class GBuffer {
   const std::vector<float>& coverage() const { return coverage_; }
   // The surface seen through the centre-most sample (for per-pixel lookups).
   const GBufferSample& central(int x, int y) const { return sample(x, y, central_); }
+  // Whether two pixels see the same surface: the same triangle, or a similar
+  // normal (within ~25 degrees) at a similar depth (within 3 %).
+  bool same_surface(int x, int y, int nx, int ny) const;
 
  private:
   int width_, height_, spp_, grid_, central_;

@@ -1,0 +1,229 @@
+#include "analysis/fit.h"
+
+#include <spdlog/spdlog.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "analysis/probe_cleanup.h"
+#include "analysis/probe_lights.h"
+#include "analysis/surface_albedo.h"
+
+namespace relight {
+
+namespace {
+
+// One unknown or known term of the illumination: an image at unit emission.
+struct Basis {
+  Image image;
+  bool known = false;
+  Vec3 emission = Vec3::Zero();  // the known value, or the current estimate
+};
+
+Image render_basis(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, Lighting lighting,
+                   const SurfaceAlbedo& bounce, const FitOptions& options, Progress& progress) {
+  IntegratorOptions integrator_options;
+  integrator_options.max_bounces = options.max_bounces;
+  const Integrator integrator(rays, lighting, &bounce, integrator_options);
+  IlluminationOptions illumination;
+  illumination.paths_per_pixel = options.paths_per_pixel;
+  illumination.seed = options.seed;
+  return render_illumination(gbuffer, scene.camera, integrator, illumination, progress, "fit: light transport")
+      .surface;
+}
+
+struct PixelPair {
+  size_t p, q;
+};
+
+// Nearby pixels (a few apart) on one plane, fully covered, where the
+// share of the lights in the illumination differs: across a shadow edge.
+// (Pairs across a bend — the facets of a column — would also test the shading
+// model; a cast shadow on a plane tests only the light.)
+std::vector<PixelPair> shadow_edge_pairs(const GBuffer& g, const std::vector<Basis>& bases, size_t background) {
+  const int w = g.width(), h = g.height();
+  std::vector<float> light_share(size_t(w) * h, 0.0f);
+  for (size_t i = 0; i < light_share.size(); ++i) {
+    float lights = 0.0f, total = 0.0f;
+    for (size_t k = 0; k < bases.size(); ++k) {
+      const float v = luminance(bases[k].image.pixels[i].cwiseProduct(bases[k].emission));
+      total += v;
+      if (k != background) lights += v;
+    }
+    light_share[i] = total > 0.0f ? lights / total : 0.0f;
+  }
+  std::vector<PixelPair> pairs;
+  constexpr int kGap = 5;  // wider than a penumbra: compare fully lit with fully shadowed
+  constexpr float kMinShareJump = 0.5f;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (g.coverage(x, y) < 1.0f) continue;
+      for (const auto& [dx, dy] : {std::pair{kGap, 0}, std::pair{0, kGap}}) {
+        const int nx = x + dx, ny = y + dy;
+        if (nx >= w || ny >= h || g.coverage(nx, ny) < 1.0f || !g.same_surface(x, y, nx, ny)) continue;
+        if (g.central(x, y).surface.normal.dot(g.central(nx, ny).surface.normal) < 0.999f) continue;
+        const size_t p = size_t(y) * w + x, q = size_t(ny) * w + nx;
+        if (std::abs(light_share[p] - light_share[q]) > kMinShareJump) pairs.push_back({p, q});
+      }
+    }
+  return pairs;
+}
+
+// Solves the edge equations of one colour channel for the unknown emissions by
+// iteratively reweighted least squares (Cauchy weights: texture edges that
+// happen to lie along a shadow edge are outliers).
+void solve_channel(const Image& photo, std::vector<Basis>& bases, const std::vector<PixelPair>& pairs, int c) {
+  std::vector<size_t> unknown;
+  for (size_t k = 0; k < bases.size(); ++k)
+    if (!bases[k].known) unknown.push_back(k);
+  if (unknown.empty() || pairs.empty()) return;
+  const auto illum = [&](size_t i) {
+    float sum = 0.0f;
+    for (const auto& b : bases) sum += b.image.pixels[i][c] * b.emission[c];
+    return sum;
+  };
+  const Eigen::Index m = Eigen::Index(pairs.size()), n = Eigen::Index(unknown.size());
+  Eigen::MatrixXd A(m, n);
+  Eigen::VectorXd rhs(m), scale(m);
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const size_t p = pairs[r].p, q = pairs[r].q;
+    const double fp = photo.pixels[p][c], fq = photo.pixels[q][c];
+    scale[r] = 1.0 / std::max(1e-9, fp * illum(q) + fq * illum(p));  // makes each equation relative
+    rhs[r] = 0.0;
+    for (size_t k = 0; k < bases.size(); ++k) {
+      const double coeff = fp * bases[k].image.pixels[q][c] - fq * bases[k].image.pixels[p][c];
+      if (bases[k].known) rhs[r] -= coeff * bases[k].emission[c];
+    }
+    for (Eigen::Index j = 0; j < n; ++j)
+      A(r, j) = fp * bases[unknown[j]].image.pixels[q][c] - fq * bases[unknown[j]].image.pixels[p][c];
+  }
+  Eigen::VectorXd weight = scale, x;
+  for (int iteration = 0; iteration < 5; ++iteration) {
+    x = (weight.asDiagonal() * A).colPivHouseholderQr().solve(weight.asDiagonal() * rhs);
+    const Eigen::VectorXd residual = (scale.asDiagonal() * (A * x - rhs)).cwiseAbs();
+    std::vector<double> sorted(residual.data(), residual.data() + m);
+    std::nth_element(sorted.begin(), sorted.begin() + m / 2, sorted.end());
+    const double sigma = std::max(1e-9, 1.4826 * sorted[m / 2]) * 2.0;
+    for (Eigen::Index r = 0; r < m; ++r) weight[r] = scale[r] / (1.0 + std::pow(residual[r] / sigma, 2));
+  }
+  for (Eigen::Index j = 0; j < n; ++j) bases[unknown[j]].emission[c] = float(std::max(0.0, x[j]));
+}
+
+// The emission of each light as the probes measure it (mean over the probes
+// that see it).
+std::optional<Vec3> emission_seen_by_probes(const std::vector<Probe>& probes, const Light& light) {
+  Vec3 sum = Vec3::Zero();
+  int n = 0;
+  for (const Probe& probe : probes)
+    if (const auto seen = locate_light_in_probe(probe, light))
+      if (const auto e = emission_from_probe(probe, light, *seen)) sum += *e, ++n;
+  if (n == 0) return std::nullopt;
+  return Vec3(sum / float(n));
+}
+
+Light unit_light(const Light& light) {
+  Light unit = light;
+  unit.color = Vec3::Ones();
+  unit.power = unit.irradiance = 1.0f;
+  return unit;
+}
+
+}  // namespace
+
+void set_emission(Light& light, const Vec3& emission) {
+  const float colour_luminance = std::max(1e-6f, luminance(light.color));
+  const float strength = luminance(emission) / colour_luminance;
+  if (strength <= 0.0f) return;
+  light.color = emission / strength;
+  (light.type == LightType::directional ? light.irradiance : light.power) = strength;
+}
+
+FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,
+                       Progress& progress) {
+  FitResult result;
+  result.scene = scene;
+  result.background_before = scene.background;
+
+  std::vector<Probe> distant;
+  for (const Probe& p : scene.probes) distant.push_back(remove_local_geometry_from_probe(p, rays));
+
+  // One basis per enabled light, then the background.
+  std::vector<size_t> light_index;
+  std::vector<Basis> bases;
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& light = scene.lights[i];
+    if (!light.enabled) continue;
+    Basis b;
+    b.emission = light.emission();
+    FittedLight report{light.name, light.emission(), light.emission(), "shadows"};
+    if (const auto seen = emission_seen_by_probes(distant, light)) {
+      b.known = true;
+      b.emission = *seen;
+      report.source = "probe";
+    }
+    light_index.push_back(i);
+    bases.push_back(std::move(b));
+    result.lights.push_back(report);
+  }
+  const bool anchored = std::any_of(bases.begin(), bases.end(), [](const Basis& b) { return b.known; });
+  if (!anchored && !bases.empty()) {
+    bases.front().known = true;  // the scale anchor: see fit.h
+    result.lights.front().source = "kept (scale anchor)";
+  }
+  const size_t background = bases.size();
+  bases.push_back(Basis{Image(), false, scene.background});
+
+  Image bounce_albedo(gbuffer.width(), gbuffer.height(), Vec3::Ones());
+  Vec3 unseen = Vec3::Ones();
+  for (int round = 0; round < options.rounds; ++round) {
+    const PhotoAlbedo bounce(scene.camera, gbuffer, bounce_albedo, unseen);
+    for (size_t k = 0; k < light_index.size(); ++k) {
+      Lighting lighting;
+      lighting.lights = {unit_light(scene.lights[light_index[k]])};
+      bases[k].image = render_basis(scene, rays, gbuffer, lighting, bounce, options, progress);
+    }
+    Lighting sky;
+    sky.environment = Environment::constant(Vec3::Ones());
+    bases[background].image = render_basis(scene, rays, gbuffer, sky, bounce, options, progress);
+
+    const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer, bases, background);
+    result.edge_pairs = pairs.size();
+    for (int c = 0; c < 3; ++c) solve_channel(scene.photo, bases, pairs, c);
+    spdlog::info("fit round {}: {} shadow-edge pixel pairs, background {:.4f} {:.4f} {:.4f}", round + 1, pairs.size(),
+                 bases[background].emission.x(), bases[background].emission.y(), bases[background].emission.z());
+
+    // The albedo under this lighting, for the next round's bounce light.
+    IlluminationImages illumination{Image(gbuffer.width(), gbuffer.height()), Image(gbuffer.width(), gbuffer.height())};
+    for (size_t i = 0; i < illumination.surface.size(); ++i)
+      for (const auto& b : bases) illumination.surface.pixels[i] += b.image.pixels[i].cwiseProduct(b.emission);
+    const AlbedoImages albedo = recover_albedo(scene.photo, illumination, gbuffer);
+    bounce_albedo = albedo.albedo;
+    unseen = albedo.mean;
+  }
+
+  // Soft light (a lamp indoors) casts too few sharp shadows to tell the
+  // background from the lights, and the edge fit can land anywhere. The
+  // probes measure the environment directly, but only the part of it they
+  // see: where the edge fit disagrees with their mean radiance by more than a
+  // factor of two, the probes' mean is taken instead.
+  if (!distant.empty()) {
+    Vec3 mean = Vec3::Zero();
+    for (const Probe& p : distant) mean += mean_radiance(remove_lights_from_probe(p, scene.lights));
+    mean /= float(distant.size());
+    const float ratio = luminance(bases[background].emission) / std::max(1e-6f, luminance(mean));
+    if (result.edge_pairs == 0 || ratio < 0.5f || ratio > 2.0f) {
+      bases[background].emission = mean;
+      result.background_source = "probe mean (the shadows disagree)";
+    }
+  }
+  for (size_t k = 0; k < light_index.size(); ++k) {
+    set_emission(result.scene.lights[light_index[k]], bases[k].emission);
+    result.lights[k].emission_after = bases[k].emission;
+  }
+  result.scene.background = bases[background].emission;
+  result.background_after = result.scene.background;
+  return result;
+}
+
+}  // namespace relight

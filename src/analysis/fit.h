@@ -1,0 +1,57 @@
+// Automatic light fitting: the thesis set the lights' intensities and the
+// background "by trial and error"; relight fits them.
+//
+// 1. A light that a probe sees gets the emission implied by the irradiance it
+//    delivers at the probe (probe_lights.h): absolute, colour included.
+// 2. Light transport is linear, so the illumination is a sum of one image per
+//    light (at unit emission) and one for the background. The albedo
+//    photo / illumination must not change across a shadow edge; for pixel
+//    pairs on the same surface on either side of one, a(p) = a(q) is linear in
+//    the unknown emissions: photo(p) L(q) - photo(q) L(p) = 0. Robust
+//    (iteratively reweighted) least squares per colour channel gives the
+//    background and the lights no probe sees. The overall scale of light and
+//    albedo cannot be told apart from one photo: without a probe it is anchored
+//    by keeping the first light as the user gave it.
+// Where the shadows are too soft to tell background from lights (the fit
+// disagrees with the probes' mean radiance by over a factor of two), the
+// background is the probes' mean radiance (without lights and geometry).
+// Each round's bounce light uses the albedo recovered with the lighting
+// fitted in the round before (the first: white surfaces).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/analyze.h"
+
+namespace relight {
+
+struct FitOptions {
+  int paths_per_pixel = 32;
+  uint64_t seed = 1;
+  int max_bounces = 4;
+  int rounds = 3;
+};
+
+struct FittedLight {
+  std::string name;
+  Vec3 emission_before, emission_after;  // colour x power (x irradiance for a sun)
+  std::string source;                    // "probe", "shadows" or "kept (scale anchor)"
+};
+
+struct FitResult {
+  Scene scene;  // the input scene with the fitted lights and background
+  std::vector<FittedLight> lights;
+  Vec3 background_before, background_after;
+  std::string background_source = "shadows";  // or the probe mean
+  size_t edge_pairs = 0;  // pixel pairs across shadow edges used by the last round
+};
+
+FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,
+                       Progress& progress);
+
+// Sets a light's colour and power (or irradiance) to give `emission`, keeping
+// the luminance of its colour as the user chose it.
+void set_emission(Light& light, const Vec3& emission);
+
+}  // namespace relight

@@ -1,0 +1,151 @@
+#include "analysis/probe_lights.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace relight {
+
+namespace {
+
+// Where the user says the light is, seen from `from`, and its angular radius.
+bool expected_direction(const Light& light, const Vec3& from, Vec3& dir, float& angular_radius) {
+  if (light.type == LightType::directional) {
+    dir = -light.direction.normalized();
+    angular_radius = radians(light.angle_deg) * 0.5f;
+    return true;
+  }
+  const Vec3 to = light.position - from;
+  const float dist = to.norm();
+  if (dist < 1e-6f) return false;
+  dir = to / dist;
+  const float extent = light.type == LightType::area ? 0.5f * light.size.norm() : light.radius;
+  angular_radius = std::asin(std::min(1.0f, extent / dist));
+  return true;
+}
+
+struct PixelDirections {
+  std::vector<size_t> index;
+  std::vector<Vec3> direction;
+};
+
+// Every pixel of the probe whose direction is within acos(cos_max) of `axis`.
+PixelDirections pixels_within(const Probe& probe, const Vec3& axis, float cos_max) {
+  const ProbeFrame frame(probe.forward, probe.up);
+  const Image& img = probe.image;
+  PixelDirections out;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const auto d = probe_uv_to_direction(probe.mapping, frame, Vec2((x + 0.5f) / img.width, (y + 0.5f) / img.height));
+      if (d && d->dot(axis) >= cos_max) {
+        out.index.push_back(size_t(y) * img.width + x);
+        out.direction.push_back(*d);
+      }
+    }
+  return out;
+}
+
+Vec3 channel_median(std::vector<Vec3> values) {
+  Vec3 m;
+  for (int c = 0; c < 3; ++c) {
+    std::vector<float> ch;
+    for (const auto& v : values) ch.push_back(v[c]);
+    std::nth_element(ch.begin(), ch.begin() + ch.size() / 2, ch.end());
+    m[c] = ch[ch.size() / 2];
+  }
+  return m;
+}
+
+constexpr float kSearchDeg = 10.0f;  // how far the real light may be from where the user put it
+constexpr float kStandOut = 4.0f;    // a light pixel is this many times brighter than its surroundings
+
+}  // namespace
+
+std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Light& light) {
+  Vec3 expected;
+  float radius;
+  if (!light.enabled || !expected_direction(light, probe.position, expected, radius)) return std::nullopt;
+  const Image& img = probe.image;
+  const ProbeFrame frame(probe.forward, probe.up);
+
+  // 1. The brightest pixel within the search cone around the expected direction.
+  const PixelDirections search = pixels_within(probe, expected, std::cos(radians(kSearchDeg) + radius));
+  if (search.index.empty()) return std::nullopt;
+  size_t best = 0;
+  for (size_t i = 1; i < search.index.size(); ++i)
+    if (luminance(img.pixels[search.index[i]]) > luminance(img.pixels[search.index[best]])) best = i;
+  Vec3 centre = search.direction[best];
+
+  // 2. The region: the light's angular radius plus a margin for the probe's
+  //    blur (three pixels) and the user's estimate (one degree).
+  const Vec2 uv = probe_direction_to_uv(probe.mapping, frame, centre);
+  const float pixel_angle = std::sqrt(probe_pixel_solid_angle(probe.mapping, uv, img.width, img.height));
+  const float cone = radius + 3.0f * pixel_angle + radians(1.0f);
+  const PixelDirections region = pixels_within(probe, centre, std::cos(cone));
+  const PixelDirections outer = pixels_within(probe, centre, std::cos(std::min(kPi, 2.0f * cone)));
+  std::vector<Vec3> ring;
+  for (size_t i = 0; i < outer.index.size(); ++i)
+    if (outer.direction[i].dot(centre) < std::cos(cone)) ring.push_back(img.pixels[outer.index[i]]);
+  if (region.index.empty() || ring.empty()) return std::nullopt;
+
+  LightInProbe seen;
+  seen.surround = channel_median(std::move(ring));
+  if (luminance(img.pixels[search.index[best]]) < kStandOut * luminance(seen.surround) + 1e-6f) return std::nullopt;
+  seen.pixels = region.index;
+  seen.irradiance = Vec3::Zero();
+  Vec3 weighted_direction = Vec3::Zero();
+  for (size_t i = 0; i < region.index.size(); ++i) {
+    const size_t p = region.index[i];
+    const int x = int(p % img.width), y = int(p / img.width);
+    const float sr = probe_pixel_solid_angle(probe.mapping, Vec2((x + 0.5f) / img.width, (y + 0.5f) / img.height),
+                                             img.width, img.height);
+    const Vec3 excess = (img.pixels[p] - seen.surround).cwiseMax(0.0f) * sr;
+    seen.irradiance += excess;
+    weighted_direction += luminance(excess) * region.direction[i];
+  }
+  seen.direction = weighted_direction.norm() > 0.0f ? Vec3(weighted_direction.normalized()) : centre;
+  return seen;
+}
+
+Probe remove_lights_from_probe(const Probe& probe, const std::vector<Light>& lights) {
+  Probe out = probe;
+  for (const Light& light : lights)
+    if (const auto seen = locate_light_in_probe(probe, light))
+      for (size_t p : seen->pixels) out.image.pixels[p] = seen->surround;
+  return out;
+}
+
+std::optional<Vec3> emission_from_probe(const Probe& probe, const Light& light, const LightInProbe& seen) {
+  if (light.type == LightType::directional) return seen.irradiance;  // a sun's emission is its irradiance
+  const Vec3 to_probe = probe.position - light.position;
+  const float d2 = to_probe.squaredNorm();
+  const Vec3 dir = to_probe.normalized();
+  switch (light.type) {
+    case LightType::point:  // E = P / (4 pi (d^2 + r^2))
+      return Vec3(seen.irradiance * (4.0f * kPi * (d2 + light.radius * light.radius)));
+    case LightType::spot: {
+      const float factor = spot_factor(light, dir.dot(light.direction.normalized()));
+      if (factor < 0.05f) return std::nullopt;  // the probe is (nearly) outside the cone
+      return Vec3(seen.irradiance * (4.0f * kPi * (d2 + light.radius * light.radius) / factor));
+    }
+    case LightType::area: {  // E = L Omega, Omega = w h cos / d^2, L = P / (4 w h)
+      const float cos_light = dir.dot(light.direction.normalized());
+      if (cos_light < 0.1f) return std::nullopt;
+      return Vec3(seen.irradiance * (4.0f * d2 / cos_light));
+    }
+    case LightType::directional: break;
+  }
+  return std::nullopt;
+}
+
+std::optional<Vec3> triangulate(const Vec3& a, const Vec3& u, const Vec3& b, const Vec3& v) {
+  // Closest points a + s u and b + t v of two lines (u, v unit).
+  const Vec3 w = a - b;
+  const float uv = u.dot(v), denom = 1.0f - uv * uv;
+  if (denom < 1e-6f) return std::nullopt;
+  const float s = (uv * v.dot(w) - u.dot(w)) / denom;
+  const float t = (v.dot(w) - uv * u.dot(w)) / denom;
+  if (s <= 0.0f || t <= 0.0f) return std::nullopt;  // behind a probe
+  return Vec3(0.5f * ((a + s * u) + (b + t * v)));
+}
+
+}  // namespace relight

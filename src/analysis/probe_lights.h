@@ -1,0 +1,41 @@
+// The principal lights in a light probe. A probe photographs the lamps and the
+// sun too (thesis 3.6-3.7); relight finds each light's bright compact region
+// near where the user placed it, measures its direction and the irradiance it
+// delivers at the probe (which gives the light's absolute power), and removes
+// it — replaced by the surrounding radiance — so that rendering with both the
+// lights and the probe lights nothing twice.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "scene/light.h"
+#include "scene/probe.h"
+
+namespace relight {
+
+struct LightInProbe {
+  Vec3 direction;              // energy-weighted centre of the region, from the probe
+  Vec3 irradiance;             // at the probe, facing the light, above the surroundings (W/m^2)
+  Vec3 surround;               // median radiance of the ring around the region
+  std::vector<size_t> pixels;  // the region (pixel indices)
+};
+
+// The light's region in the probe: pixels within its angular radius plus a
+// margin around the brightest spot near its expected direction. Nothing when
+// the light is not visible there (no pixel stands out from its surroundings).
+std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Light& light);
+
+// The probe with every enabled light's region replaced by its surroundings.
+Probe remove_lights_from_probe(const Probe& probe, const std::vector<Light>& lights);
+
+// The light's emission (colour x power, or x irradiance for the sun) that
+// explains the irradiance measured at the probe; nothing for a light the probe
+// does not see or cannot measure (a spot facing away).
+std::optional<Vec3> emission_from_probe(const Probe& probe, const Light& light, const LightInProbe& seen);
+
+// The point nearest to two rays (a light seen from two probes); nothing when
+// they are parallel.
+std::optional<Vec3> triangulate(const Vec3& origin_a, const Vec3& dir_a, const Vec3& origin_b, const Vec3& dir_b);
+
+}  // namespace relight

@@ -1,0 +1,117 @@
+// Finding the principal lights in light probes: a synthetic probe with a known
+// lamp, and the lamp and sun of the reference scenes (skipped where absent).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "analysis/probe_cleanup.h"
+#include "analysis/probe_lights.h"
+#include "io/scene_io.h"
+#include "render/ray_scene.h"
+
+namespace fs = std::filesystem;
+using namespace relight;
+
+namespace {
+
+// A 512x256 equirect probe of a uniform environment with a point lamp of
+// radius r and power P at `lamp` seen from the origin: the lamp's disc has
+// radiance P/(4 pi^2 r^2).
+Probe probe_with_lamp(const Vec3& lamp, float radius, float power, const Vec3& environment) {
+  Probe p;
+  p.image = Image(512, 256, environment);
+  const ProbeFrame frame(p.forward, p.up);
+  const float dist = lamp.norm(), cos_disc = std::cos(std::asin(radius / dist));
+  const float radiance = power / (4.0f * kPi * kPi * radius * radius);
+  // Supersample each pixel so its value is the mean over its area, like a camera's.
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 512; ++x) {
+      int inside = 0;
+      for (int s = 0; s < 16; ++s) {
+        const Vec2 uv((x + (s % 4 + 0.5f) / 4) / 512, (y + (s / 4 + 0.5f) / 4) / 256);
+        inside += probe_uv_to_direction(ProbeMapping::equirect, frame, uv)->dot(lamp / dist) >= cos_disc;
+      }
+      p.image.at(x, y) += Vec3::Constant(radiance * inside / 16.0f);
+    }
+  return p;
+}
+
+TEST(ProbeLights, MeasuresAKnownLampsPowerAndDirection) {
+  const Vec3 lamp(1.0f, 1.5f, 0.8f);
+  const Probe probe = probe_with_lamp(lamp, 0.05f, 100.0f, Vec3::Constant(0.3f));
+  Light guess;
+  guess.position = lamp + Vec3(0.1f, -0.1f, 0.05f);  // the user's estimate is a little off
+  guess.radius = 0.05f;
+  guess.power = 30.0f;
+  const auto seen = locate_light_in_probe(probe, guess);
+  ASSERT_TRUE(seen);
+  EXPECT_LT(std::acos(std::min(1.0f, seen->direction.dot(lamp.normalized()))), radians(0.5f));
+  Light at_truth = guess;
+  at_truth.position = lamp;
+  const auto emission = emission_from_probe(probe, at_truth, *seen);
+  ASSERT_TRUE(emission);
+  EXPECT_NEAR(emission->x(), 100.0f, 5.0f);
+  EXPECT_NEAR(seen->surround.x(), 0.3f, 1e-4f);
+}
+
+TEST(ProbeLights, RemovalLeavesOnlyTheEnvironment) {
+  const Vec3 lamp(-1.0f, 0.5f, 1.2f);
+  const Probe probe = probe_with_lamp(lamp, 0.05f, 100.0f, Vec3::Constant(0.3f));
+  Light light;
+  light.position = lamp;
+  light.radius = 0.05f;
+  light.power = 100.0f;
+  const Probe clean = remove_lights_from_probe(probe, {light});
+  for (const auto& p : clean.image.pixels) ASSERT_NEAR(p.x(), 0.3f, 1e-4f);
+}
+
+TEST(ProbeLights, NoLightWhereThereIsNone) {
+  Probe probe;
+  probe.image = Image(64, 32, Vec3::Constant(0.5f));
+  Light light;
+  light.position = Vec3(0, 2, 1);
+  light.power = 10.0f;
+  EXPECT_FALSE(locate_light_in_probe(probe, light));
+}
+
+TEST(ProbeLights, TwoProbesTriangulateALamp) {
+  const Vec3 lamp(0.4f, 2.0f, 1.7f), a(0, 0, 1), b(1.5f, 0.2f, 0.9f);
+  const auto p = triangulate(a, (lamp - a).normalized(), b, (lamp - b).normalized());
+  ASSERT_TRUE(p);
+  EXPECT_LT((*p - lamp).norm(), 1e-4f);
+  EXPECT_FALSE(triangulate(a, Vec3(1, 0, 0), b, Vec3(1, 0, 0)));
+}
+
+fs::path scenes_folder() {
+  if (const char* env = std::getenv("RELIGHT_SCENES")) return env;
+  return fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes";
+}
+
+// The reference probes see the real lamp and sun: the power and colour they
+// imply match the scene's within 10 %.
+class ReferenceProbe : public testing::TestWithParam<std::string> {};
+
+TEST_P(ReferenceProbe, ImpliesTheLightsTruePower) {
+  const fs::path file = scenes_folder() / GetParam() / "scene.json";
+  if (!fs::exists(file)) GTEST_SKIP() << file << " not found (set RELIGHT_SCENES)";
+  const Scene scene = load_scene(file);
+  const RayScene rays(scene.mesh);
+  const Light& light = scene.lights.at(0);
+  for (const Probe& raw : scene.probes) {
+    const Probe probe = remove_local_geometry_from_probe(raw, rays);
+    const auto seen = locate_light_in_probe(probe, light);
+    ASSERT_TRUE(seen) << raw.path;
+    const auto emission = emission_from_probe(probe, light, *seen);
+    ASSERT_TRUE(emission);
+    const Vec3 truth = light.emission();
+    std::printf("[ figures  ] %s: %s implies emission %.3f %.3f %.3f (true %.3f %.3f %.3f)\n", GetParam().c_str(),
+                fs::path(raw.path).filename().c_str(), emission->x(), emission->y(), emission->z(), truth.x(),
+                truth.y(), truth.z());
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR((*emission)[c] / truth[c], 1.0f, 0.1f) << raw.path << " channel " << c;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceProbe, testing::Values("outdoor", "bookcase"));
+
+}  // namespace
