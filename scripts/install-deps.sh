@@ -10,6 +10,8 @@ packages=(
   libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   qt6-base-dev libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   xvfb xauth
+  libxxhash-dev                      # content hashes of the analysis inputs
+  clang-14 libclang-rt-14-dev llvm-14  # asan and fuzz presets: clang, libFuzzer, llvm-symbolizer
 )
 
 missing=()

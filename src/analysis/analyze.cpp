@@ -8,6 +8,7 @@
 #include "analysis/surface_albedo.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/content_hash.h"
 #include "io/image_io.h"
 
 namespace relight {
@@ -39,6 +40,14 @@ float mean_abs_change(const Image& a, const Image& b, const std::vector<float>& 
   return n ? float(sum / n) : 0.0f;
 }
 
+// A camera inside a closed object sees only surfaces no light reaches: the
+// photo cannot be divided by their illumination anywhere.
+bool no_light_reaches_the_view(const Image& surface_illumination, const std::vector<float>& coverage) {
+  for (size_t i = 0; i < coverage.size(); ++i)
+    if (coverage[i] > 0.0f && luminance(surface_illumination.pixels[i]) > 0.0f) return false;
+  return true;
+}
+
 }  // namespace
 
 Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& options,
@@ -55,6 +64,10 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   const Integrator initial(rays, lighting, &white, integrator_options);
   result.illumination = render_illumination(gbuffer, scene.camera, initial, illumination_options(options),
                                             progress, "initial illumination");
+  if (no_light_reaches_the_view(result.illumination.surface, result.coverage))
+    throw InputError(scene.path.string(), "/camera",
+                     "no light reaches any surface the camera sees: is the camera inside the geometry, or every "
+                     "light shut in?");
   result.albedo = recover_albedo(scene.photo, result.illumination, gbuffer);
   result.iterations = 1;
 
@@ -80,7 +93,19 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   return result;
 }
 
-void save_analysis(const fs::path& folder, const Analysis& a) {
+std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& options) {
+  ContentHash hash;
+  hash.add_file(scene.path);
+  hash.add_file(scene.photo_path);
+  hash.add_file(scene.geometry_path);
+  for (const Probe& probe : scene.probes) hash.add_file(probe.path);
+  hash.add_text(fmt::format("{} {} {} {} {} {} {}", to_string(options.strategy), options.paths_per_pixel,
+                            options.gbuffer_samples, options.seed, options.max_bounces, options.interreflection,
+                            options.denoise));
+  return hash.hex();
+}
+
+void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene) {
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (!fs::is_directory(folder)) throw InputError(folder.string(), "", "cannot create the output folder");
@@ -99,6 +124,7 @@ void save_analysis(const fs::path& folder, const Analysis& a) {
 
   nlohmann::json j;
   j["format"] = "relight-analysis/1";
+  j["input_hash"] = analysis_input_hash(scene, a.options);
   j["strategy"] = to_string(a.options.strategy);
   j["paths_per_pixel"] = a.options.paths_per_pixel;
   j["gbuffer_samples"] = a.options.gbuffer_samples;
@@ -138,6 +164,10 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
     a.albedo.mean = Vec3(u.at(0).get<float>(), u.at(1).get<float>(), u.at(2).get<float>());
     if (j.at("width").get<int>() != scene.photo.width || j.at("height").get<int>() != scene.photo.height)
       throw InputError(meta.string(), "/width", "the analysis was made for a photo of another size");
+    if (j.value("input_hash", std::string()) != analysis_input_hash(scene, a.options))
+      throw InputError(meta.string(), "/input_hash",
+                       "the analysis is stale: " + scene.path.string() +
+                           ", its photo, geometry or probes changed since it was made; re-run 'relight analyze'");
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "analysis/albedo.h"
 #include "analysis/strategy.h"
@@ -46,11 +47,18 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
                  Progress& progress);
 
 // The analysis folder: illumination.exr, albedo.exr (coverage-weighted, like
-// albedo_gt.exr), albedo.png, mask.exr, and analysis.json with the options and
-// the per-surface albedo (albedo_surface.exr) that later renders need.
-void save_analysis(const std::filesystem::path& folder, const Analysis& analysis);
+// albedo_gt.exr), albedo.png, mask.exr, and analysis.json with the options,
+// the hash of the scene's inputs (analysis_input_hash) and the per-surface
+// albedo (albedo_surface.exr) that later renders need.
+void save_analysis(const std::filesystem::path& folder, const Analysis& analysis, const Scene& scene);
 // Loads a folder written by save_analysis for this scene; throws InputError
-// if it is missing, incomplete or made for a photo of another size.
+// if it is missing, incomplete, made for a photo of another size, or stale:
+// made from a scene.json, photo, geometry or probe that has changed since.
 Analysis load_analysis(const std::filesystem::path& folder, const Scene& scene);
+
+// A hash of everything an analysis depends on: the scene.json file, the
+// photo, geometry and probe files (their bytes), and the options that
+// analysis.json records.
+std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& options);
 
 }  // namespace relight

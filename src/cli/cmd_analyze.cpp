@@ -38,7 +38,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
       options.strategy = args->strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args->strategy);
       options.interreflection = args->interreflection == "on";
       const Analysis analysis = analyze(s.scene, *s.rays, *s.gbuffer, options, progress);
-      save_analysis(args->out, analysis);
+      save_analysis(args->out, analysis, s.scene);
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::printf("analysis (%s, %d spp, %d render%s) written to %s in %.1f s\n", to_string(options.strategy),
                   options.paths_per_pixel, analysis.iterations, analysis.iterations > 1 ? "s" : "", args->out.c_str(),

@@ -39,20 +39,9 @@ void add_render_command(CLI::App& app, Action& action) {
       const Rig rig = load_rig(args->rig);
       fs::path out(args->out);
       if (out.extension() != ".exr") out += ".exr";
-      AnalysisOptions options = args->options;
-      Analysis analysis;
-      if (!args->analysis.empty()) {
-        // The G-buffer must be the analysis's: same seed and sub-pixel samples.
-        const Scene probe_scene = load_scene(args->scene);
-        analysis = load_analysis(args->analysis, probe_scene);
-        options.seed = analysis.options.seed;
-        options.gbuffer_samples = analysis.options.gbuffer_samples;
-      }
-      LoadedScene s = load_for_rendering(args->scene, options);
-      if (args->analysis.empty()) {
-        options.strategy = default_strategy(s.scene);
-        analysis = analyze(s.scene, *s.rays, *s.gbuffer, options, progress);
-      }
+      const AnalysedScene analysed(args->scene, args->analysis, args->options, progress);
+      const LoadedScene& s = analysed.loaded;
+      const Analysis& analysis = analysed.analysis;
       RenderOptions render_options;
       render_options.paths_per_pixel = args->options.paths_per_pixel;
       render_options.max_bounces = args->options.max_bounces;

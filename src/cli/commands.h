@@ -22,6 +22,7 @@ void add_analyze_command(CLI::App& app, Action& action);
 void add_render_command(CLI::App& app, Action& action);
 void add_rig_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);
+void add_preview_command(CLI::App& app, Action& action);
 void add_fit_command(CLI::App& app, Action& action);
 
 // A loaded scene with its ray-tracing structure and G-buffer.
@@ -31,6 +32,20 @@ struct LoadedScene {
   std::unique_ptr<GBuffer> gbuffer;
 };
 LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options);
+
+// A scene loaded for rendering with its analysis: read from analysis_folder
+// (whose seed and sub-pixel samples then make the G-buffer) or, where that
+// is empty, made now with `options`. Built in place and never moved: the
+// ray-tracing structure refers to the scene's mesh.
+struct AnalysedScene {
+  AnalysedScene(const std::string& scene_path, const std::string& analysis_folder, AnalysisOptions options,
+                Progress& progress);
+  AnalysedScene(const AnalysedScene&) = delete;
+  AnalysedScene& operator=(const AnalysedScene&) = delete;
+
+  Analysis analysis;
+  LoadedScene loaded;
+};
 
 // Options shared by analyze and render.
 void add_sampling_options(CLI::App& cmd, AnalysisOptions& options);

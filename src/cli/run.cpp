@@ -1,10 +1,13 @@
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "io/image_io.h"
 #include "io/scene_io.h"
 
 namespace relight::cli {
@@ -13,6 +16,13 @@ namespace {
 Progress* g_progress = nullptr;
 void on_interrupt(int) {
   if (g_progress) g_progress->cancel();
+}
+
+// An error is one line even where a library's message spans several.
+std::string one_line(std::string message) {
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  std::replace(message.begin(), message.end(), '\r', ' ');
+  return message;
 }
 }  // namespace
 
@@ -42,11 +52,20 @@ int run(std::span<const std::string> args) {
   app.require_subcommand(1);
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "print what each step does");
+  int64_t max_pixels = kDefaultMaxImagePixels;
+  app.add_option("--max-pixels", max_pixels,
+                 "refuse photos and probes of more pixels than this; memory grows with the photo's size "
+                 "(docs/reliability.md)")
+      ->envname("RELIGHT_MAX_PIXELS")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.fallthrough();  // the global options may follow the subcommand
   Action action;
   add_analyze_command(app, action);
   add_render_command(app, action);
   add_rig_command(app, action);
   add_compare_command(app, action);
+  add_preview_command(app, action);
   add_fit_command(app, action);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 wants them reversed, without argv[0]
@@ -55,17 +74,25 @@ int run(std::span<const std::string> args) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  set_max_image_pixels(max_pixels);
+  // Warnings go to stderr with the errors; stdout carries only the results.
+  static const auto log_to_stderr =
+      std::make_shared<spdlog::logger>("relight", std::make_shared<spdlog::sinks::stderr_color_sink_mt>());
+  spdlog::set_default_logger(log_to_stderr);
   spdlog::set_pattern("relight: %^%l%$: %v");
   spdlog::set_level(verbose ? spdlog::level::info : spdlog::level::warn);
 
   Progress progress;
   g_progress = &progress;
   std::signal(SIGINT, on_interrupt);
+  struct ForgetProgress {
+    ~ForgetProgress() { g_progress = nullptr; }  // a later Ctrl-C must not reach a dead Progress
+  } forget_progress;
   try {
     action(progress);
     return 0;
   } catch (const InputError& e) {
-    std::fprintf(stderr, "\nrelight: error: %s\n", e.what());
+    std::fprintf(stderr, "\nrelight: error: %s\n", one_line(e.what()).c_str());
     return 2;
   } catch (const Cancelled&) {
     std::fprintf(stderr, "\nrelight: cancelled; nothing was written\n");

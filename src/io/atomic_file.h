@@ -1,6 +1,9 @@
 // Atomic output: every file is written under a temporary name in its target
 // folder and renamed into place, so a crash or a kill never leaves a half
-// file and never destroys the previous one.
+// file and never destroys the previous one (a writer killed mid-write may
+// leave its hidden temporary, ".NAME.tmpPID-N.EXT", beside the target). The
+// temporary is flushed to disk before the rename, so a power cut cannot
+// leave an empty target either.
 #pragma once
 
 #include <filesystem>

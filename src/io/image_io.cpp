@@ -3,10 +3,14 @@
 #include <spdlog/spdlog.h>
 
 #include <OpenImageIO/imageio.h>
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <functional>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 
 namespace relight {
 
@@ -18,43 +22,71 @@ using OIIO::TypeDesc;
 
 namespace {
 
+std::atomic<int64_t> g_max_pixels{kDefaultMaxImagePixels};
+
 struct RawImage {
-  int width = 0, height = 0, channels = 0;
+  int width = 0, height = 0, channels = 0;  // channels: those read
   std::vector<float> data;
   ImageSpec spec;
 };
 
-RawImage read_raw(const fs::path& path) {
+// OpenImageIO's messages may span several lines; an InputError is one line.
+std::string first_line(const std::string& message) { return message.substr(0, message.find('\n')); }
+
+// Reads the channels [first, last) that pick_channels chooses for the image's
+// spec; the size is checked against the limit before any pixel is read.
+RawImage read_raw(const fs::path& path, const std::function<std::pair<int, int>(const ImageSpec&)>& pick_channels) {
   const std::string name = path.string();
-  if (!fs::exists(path)) throw InputError(name, "", "file not found");
-  if (fs::is_directory(path)) throw InputError(name, "", "is a folder, expected an image file");
+  expect_input_file(path, "an image file");
   auto in = ImageInput::open(name);
   if (!in) {
-    std::string err = OIIO::geterror();
+    std::string err = first_line(OIIO::geterror());
     throw InputError(name, "", "not a readable image" + (err.empty() ? std::string() : " (" + err + ")"));
   }
   RawImage raw;
   raw.spec = in->spec();
   raw.width = raw.spec.width;
   raw.height = raw.spec.height;
-  raw.channels = raw.spec.nchannels;
-  if (raw.width <= 0 || raw.height <= 0 || raw.channels <= 0)
-    throw InputError(name, "", "the image is empty (0 pixels)");
-  constexpr int64_t kMaxPixels = int64_t(1) << 28;  // 268 Mpixel: refuse absurd claimed sizes
-  if (int64_t(raw.width) * raw.height > kMaxPixels)
-    throw InputError(name, "", fmt::format("image of {}x{} is larger than the limit of {} pixels", raw.width,
-                                           raw.height, kMaxPixels));
-  raw.data.resize(size_t(raw.width) * raw.height * raw.channels);
-  if (!in->read_image(0, 0, 0, raw.channels, TypeDesc::FLOAT, raw.data.data())) {
-    throw InputError(name, "", "corrupt or truncated image (" + in->geterror() + ")");
+  if (raw.width <= 0 || raw.height <= 0 || raw.spec.nchannels <= 0)
+    throw InputError(name, "", fmt::format("the image is empty ({}x{} pixels, {} channels)", raw.width, raw.height,
+                                           raw.spec.nchannels));
+  const int64_t pixels = int64_t(raw.width) * raw.height;
+  if (pixels > max_image_pixels())
+    throw InputError(name, "", fmt::format("image of {}x{} ({:.1f} Mpixel) is over the limit of {:.1f} Mpixel "
+                                           "(raise it with --max-pixels or RELIGHT_MAX_PIXELS)",
+                                           raw.width, raw.height, pixels * 1e-6, max_image_pixels() * 1e-6));
+  const auto [first, last] = pick_channels(raw.spec);
+  raw.channels = last - first;
+  raw.data.resize(size_t(pixels) * raw.channels);
+  if (!in->read_image(0, 0, first, last, TypeDesc::FLOAT, raw.data.data()))
+    throw InputError(name, "", "corrupt or truncated image (" + first_line(in->geterror()) + ")");
+  for (size_t i = 0; i < raw.data.size(); ++i) {
+    const float v = raw.data[i];
+    if (std::isfinite(v) && std::abs(v) <= kMaxPixelValue) continue;
+    const size_t pixel = i / raw.channels;
+    throw InputError(name, fmt::format("pixel ({}, {})", pixel % raw.width, pixel / raw.width),
+                     std::isfinite(v) ? fmt::format("holds {:g}, beyond {:g}; expected radiance", v, kMaxPixelValue)
+                                      : std::string("holds a NaN or infinite value; expected finite radiance"));
   }
-  for (size_t i = 0; i < raw.data.size(); ++i)
-    if (!std::isfinite(raw.data[i])) {
-      const size_t pixel = i / raw.channels;
-      throw InputError(name, fmt::format("pixel ({}, {})", pixel % raw.width, pixel / raw.width),
-                       "holds a NaN or infinite value; expected finite radiance");
-    }
   return raw;
+}
+
+// Radiance cannot be negative, but denoisers and black-level subtraction
+// leave small negative noise: values above -1 % of the image's mean are
+// clamped to 0 with a warning, anything below is refused.
+void clamp_negative_noise(const fs::path& path, RawImage& raw) {
+  const auto lowest = std::min_element(raw.data.begin(), raw.data.end());
+  if (lowest == raw.data.end() || *lowest >= 0.0f) return;
+  double sum = 0.0;
+  for (float v : raw.data) sum += v;
+  const double tolerance = 0.01 * std::max(0.0, sum / double(raw.data.size()));
+  if (*lowest < -tolerance) {
+    const size_t pixel = size_t(lowest - raw.data.begin()) / raw.channels;
+    throw InputError(path.string(), fmt::format("pixel ({}, {})", pixel % raw.width, pixel / raw.width),
+                     fmt::format("holds the negative value {:g}; expected radiance >= 0", *lowest));
+  }
+  spdlog::warn("{}: negative pixel values (noise down to {:g}) clamped to 0", path.string(), *lowest);
+  for (float& v : raw.data) v = std::max(v, 0.0f);
 }
 
 bool is_low_dynamic_range(const ImageSpec& spec) {
@@ -72,39 +104,36 @@ void write_pixels(const fs::path& path, const ImageSpec& spec, const void* data,
 
 }  // namespace
 
+int64_t max_image_pixels() { return g_max_pixels.load(); }
+void set_max_image_pixels(int64_t pixels) { g_max_pixels.store(pixels); }
+
 Image read_image(const fs::path& path) {
-  RawImage raw = read_raw(path);
+  RawImage raw = read_raw(path, [](const ImageSpec& spec) { return std::pair(0, spec.nchannels >= 3 ? 3 : 1); });
+  clamp_negative_noise(path, raw);
   const bool ldr = is_low_dynamic_range(raw.spec);
   if (ldr) spdlog::warn("{}: 8/16-bit image taken as sRGB-encoded and linearised; an HDR photo is better",
                         path.string());
   Image img(raw.width, raw.height);
   for (size_t p = 0; p < img.size(); ++p) {
     const float* px = &raw.data[p * raw.channels];
-    Vec3 c = raw.channels >= 3 ? Vec3(px[0], px[1], px[2]) : Vec3::Constant(px[0]);
+    Vec3 c = raw.channels == 3 ? Vec3(px[0], px[1], px[2]) : Vec3::Constant(px[0]);
     if (ldr) c = Vec3(srgb_decode(c.x()), srgb_decode(c.y()), srgb_decode(c.z()));
     img.pixels[p] = c;
   }
-  for (size_t p = 0; p < img.size(); ++p)
-    if ((img.pixels[p].array() < 0.0f).any()) {
-      spdlog::warn("{}: negative pixel values clamped to 0", path.string());
-      for (auto& q : img.pixels) q = q.cwiseMax(0.0f);
-      break;
-    }
   return img;
 }
 
 std::vector<float> read_scalar_image(const fs::path& path, int& width, int& height) {
-  RawImage raw = read_raw(path);
-  int channel = 0;
-  for (int c = 0; c < raw.channels; ++c)
-    if (raw.spec.channelnames.size() > size_t(c) &&
-        (raw.spec.channelnames[c] == "Y" || raw.spec.channelnames[c] == "A"))
-      channel = c;
+  // The first channel, or the last one named Y or A.
+  const RawImage raw = read_raw(path, [](const ImageSpec& spec) {
+    int channel = 0;
+    for (int c = 0; c < spec.nchannels && size_t(c) < spec.channelnames.size(); ++c)
+      if (spec.channelnames[c] == "Y" || spec.channelnames[c] == "A") channel = c;
+    return std::pair(channel, channel + 1);
+  });
   width = raw.width;
   height = raw.height;
-  std::vector<float> out(size_t(width) * height);
-  for (size_t p = 0; p < out.size(); ++p) out[p] = raw.data[p * raw.channels + channel];
-  return out;
+  return raw.data;
 }
 
 void write_exr(const fs::path& path, const Image& image, ExrPrecision precision) {

@@ -2,15 +2,31 @@
 // and sRGB PNG/JPEG linearised), EXR and sRGB PNG out, always atomically.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <vector>
 
 #include "core/image.h"
 
 namespace relight {
 
+// The largest image, in pixels (width x height), the readers accept: a larger
+// one is refused with an InputError before any pixel is read, so a huge photo
+// or a forged header cannot exhaust memory. The CLI sets it from --max-pixels
+// or RELIGHT_MAX_PIXELS (docs/reliability.md).
+inline constexpr int64_t kDefaultMaxImagePixels = 50'000'000;
+int64_t max_image_pixels();
+void set_max_image_pixels(int64_t pixels);
+
+// No radiance comes near this (the sun is ~1e9 W/(m^2 sr)); larger values
+// are corrupt data and would overflow float sums in the renderer.
+inline constexpr float kMaxPixelValue = 1.0e20f;
+
 // Reads an image as linear RGB. Throws InputError for a missing or unreadable
-// file, an empty image or non-finite pixels. 8/16-bit formats are taken as
-// sRGB-encoded and linearised, with a warning.
+// file, an empty image, one over max_image_pixels(), non-finite pixels or ones
+// beyond kMaxPixelValue, negative ones (noise within 1 % of the mean value below 0 is clamped with a
+// warning). 8/16-bit formats are taken as sRGB-encoded and linearised, with a
+// warning.
 Image read_image(const std::filesystem::path& path);
 
 // Reads one channel (the first, or the one named Y/A if present) as a scalar

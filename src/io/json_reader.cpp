@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "io/input_file.h"
 
 namespace relight {
 
@@ -16,23 +17,32 @@ namespace fs = std::filesystem;
 
 JsonReader::json JsonReader::parse_file(const fs::path& path) {
   const std::string name = path.string();
-  if (!fs::exists(path)) throw InputError(name, "", "file not found");
-  if (fs::is_directory(path)) throw InputError(name, "", "is a folder, expected a JSON file");
+  expect_input_file(path, "a JSON file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(name, "", "cannot be opened for reading");
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
+  const auto line_at = [&](size_t offset) {
+    return "line " + std::to_string(1 + std::count(text.begin(), text.begin() + long(std::min(offset, text.size())), '\n'));
+  };
   try {
     return json::parse(text);
   } catch (const json::parse_error& e) {
-    // Turn the byte offset into a line number for the message.
-    const size_t offset = std::min<size_t>(e.byte, text.size());
-    const long line = 1 + std::count(text.begin(), text.begin() + long(offset), '\n');
     std::string what = e.what();
     const auto colon = what.rfind(": ");
-    throw InputError(name, "line " + std::to_string(line),
+    throw InputError(name, line_at(e.byte),
                      "malformed JSON (" + (colon == std::string::npos ? what : what.substr(colon + 2)) + ")");
+  } catch (const json::out_of_range& e) {
+    // A number beyond a double (1e400): nlohmann names the number, not where it is.
+    const std::string what = e.what();
+    const size_t open = what.find('\''), close = what.rfind('\'');
+    const std::string number = open < close ? what.substr(open + 1, close - open - 1) : std::string();
+    const size_t at = number.empty() ? std::string::npos : text.find(number);
+    throw InputError(name, at == std::string::npos ? "" : line_at(at),
+                     "the number " + number + " is out of range; expected a number within a double's range");
+  } catch (const json::exception& e) {
+    throw InputError(name, "", std::string("malformed JSON (") + e.what() + ")");
   }
 }
 
@@ -112,9 +122,11 @@ Vec3 JsonReader::color(const json& v, const std::string& pointer) const {
 
 void JsonReader::warn_unknown_keys(const json& obj, const std::string& pointer,
                                    std::initializer_list<const char*> known) const {
-  for (const auto& [key, value] : obj.items())
+  for (const auto& item : obj.items()) {
+    const std::string& key = item.key();  // not a structured binding: clang 14 cannot capture those
     if (std::none_of(known.begin(), known.end(), [&](const char* k) { return key == k; }))
       spdlog::warn("{}: {}: unknown key ignored", file_, json_child(pointer, key));
+  }
 }
 
 }  // namespace relight

@@ -5,13 +5,64 @@
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <fstream>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 
 namespace relight {
 
 namespace fs = std::filesystem;
+
+// Beyond this a coordinate is a unit mistake, and the ray tracer's float
+// arithmetic loses the scene (scene.json's positions have the same bound).
+constexpr float kMaxCoordinate = 1.0e7f;
+
+namespace {
+
+bool has_faces(const aiScene& scene) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m)
+    if (scene.mMeshes[m]->mNumFaces > 0) return true;
+  return false;
+}
+
+// Malformed files (a PLY with a broken header) can import as faces of no
+// vertex, or with primitive-type flags that do not match the faces; either
+// trips an assertion (an abort) in Assimp's triangulation. Drop the empty
+// faces and set the flags from the faces that are left.
+void make_faces_consistent(const aiScene& scene) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    aiMesh* mesh = scene.mMeshes[m];
+    unsigned kept = 0, types = 0;
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const unsigned n = mesh->mFaces[f].mNumIndices;
+      if (n == 0) continue;
+      if (kept != f) std::swap(mesh->mFaces[kept], mesh->mFaces[f]);
+      ++kept;
+      types |= n == 1 ? aiPrimitiveType_POINT
+               : n == 2 ? aiPrimitiveType_LINE
+               : n == 3 ? aiPrimitiveType_TRIANGLE
+                        : aiPrimitiveType_POLYGON;
+    }
+    mesh->mNumFaces = kept;  // the array is freed whole with delete[], whatever this count
+    mesh->mPrimitiveTypes = types;
+  }
+}
+
+// Assimp's PLY reader runs past the end of a header that has no end_header
+// line (a crash found by fuzzing); Assimp picks it for any file that starts
+// with "ply", whatever its name.
+void expect_complete_ply_header(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(64 * 1024, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(size_t(in.gcount()));
+  if (head.rfind("ply", 0) == 0 && head.find("end_header") == std::string::npos)
+    throw InputError(path.string(), "", "a PLY header without an end_header line");
+}
+
+}  // namespace
 
 size_t remove_degenerate_triangles(TriangleMesh& mesh) {
   const size_t before = mesh.triangles.size();
@@ -40,14 +91,22 @@ void save_obj(const fs::path& path, const TriangleMesh& mesh) {
 
 TriangleMesh load_mesh(const fs::path& path) {
   const std::string name = path.string();
-  if (!fs::exists(path)) throw InputError(name, "", "file not found");
-  if (fs::is_directory(path)) throw InputError(name, "", "is a folder, expected a mesh file");
+  expect_input_file(path, "a mesh file");
 
+  expect_complete_ply_header(path);
   Assimp::Importer importer;
-  // Keep our own handling of degenerates (we report them); bake node
-  // transforms so the mesh is in the world frame.
-  const aiScene* ai = importer.ReadFile(name, aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                                                  aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+  // Import and validate first: a malformed file's inconsistent data would
+  // trip Assimp's assertions (an abort) in the post-processing steps.
+  const aiScene* ai = importer.ReadFile(name, 0);
+  if (ai && !has_faces(*ai)) throw InputError(name, "", "the mesh has no triangles");
+  if (ai) ai = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure);
+  if (ai) {
+    make_faces_consistent(*ai);
+    // Keep our own handling of degenerates (we report them); bake node
+    // transforms so the mesh is in the world frame.
+    ai = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                      aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+  }
   if (!ai) throw InputError(name, "", std::string("not a readable mesh (") + importer.GetErrorString() + ")");
 
   TriangleMesh mesh;
@@ -66,6 +125,9 @@ TriangleMesh load_mesh(const fs::path& path) {
       const Vec3 pos(p.x, p.y, p.z);
       if (!is_finite(pos))
         throw InputError(name, fmt::format("mesh {} vertex {}", m, v), "has a NaN or infinite coordinate");
+      if (pos.cwiseAbs().maxCoeff() > kMaxCoordinate)
+        throw InputError(name, fmt::format("mesh {} vertex {}", m, v),
+                         fmt::format("has a coordinate beyond {:g} m; expected metres", kMaxCoordinate));
       mesh.positions.push_back(pos);
       if (all_have_normals) {
         const aiVector3D& n = am->mNormals[v];
@@ -76,6 +138,10 @@ TriangleMesh load_mesh(const fs::path& path) {
     for (unsigned f = 0; f < am->mNumFaces; ++f) {
       const aiFace& face = am->mFaces[f];
       if (face.mNumIndices != 3) continue;
+      for (unsigned k = 0; k < 3; ++k)
+        if (face.mIndices[k] >= am->mNumVertices)
+          throw InputError(name, fmt::format("mesh {} face {}", m, f),
+                           fmt::format("refers to vertex {} of {}", face.mIndices[k], am->mNumVertices));
       mesh.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
     }
   }

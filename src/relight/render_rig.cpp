@@ -1,36 +1,65 @@
 #include "relight/render_rig.h"
 
-#include "analysis/surface_albedo.h"
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace relight {
 
-Image render_rig(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Analysis& analysis,
-                 const Rig& rig, const RenderOptions& options, Progress& progress) {
+RelitLayers photo_layers(const Scene& scene, const Analysis& analysis) {
+  RelitLayers layers{analysis.albedo.albedo_coverage, Image(scene.photo.width, scene.photo.height)};
+  for (size_t i = 0; i < layers.background.size(); ++i) {
+    const float c = analysis.coverage[i];
+    layers.background.pixels[i] = c > 0.0f ? Vec3((1.0f - c) * analysis.illumination.background.pixels[i])
+                                           : scene.photo.pixels[i];
+  }
+  return layers;
+}
+
+Image compose_relit(const RelitLayers& layers, const Image& illumination, float environment_scale) {
+  Image out(illumination.width, illumination.height);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i)
+      out.pixels[i] = layers.albedo_coverage.pixels[i].cwiseProduct(illumination.pixels[i]) +
+                      environment_scale * layers.background.pixels[i];
+  });
+  return out;
+}
+
+NewIllumination::NewIllumination(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
+                                 const Analysis& analysis)
+    : rays_(rays),
+      analysis_(analysis),
+      environment_(strategy_environment(scene, rays, analysis.options.strategy)),
+      bounce_albedo_(scene.camera, gbuffer, analysis.albedo.albedo, analysis.albedo.mean) {}
+
+Lighting NewIllumination::rig_lighting(const Rig& rig) const {
   Lighting lighting;
   lighting.lights = rig.lights;
-  lighting.environment = strategy_environment(scene, rays, analysis.options.strategy);
+  lighting.environment = environment_;
   lighting.environment.set_scale(rig.environment_scale);
+  return lighting;
+}
 
-  const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, analysis.albedo.albedo, analysis.albedo.mean);
+IlluminationImages NewIllumination::render(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
+                                           const RenderOptions& options, Progress& progress,
+                                           const std::string& label, bool first_surface_lights) const {
   IntegratorOptions integrator_options;
   integrator_options.max_bounces = options.max_bounces;
-  const Integrator integrator(rays, lighting, &bounce_albedo, integrator_options);
+  integrator_options.first_surface_lights = first_surface_lights;
+  const Integrator integrator(rays_, lighting, &bounce_albedo_, integrator_options);
   // The analysis's seed: the noise of the new illumination then follows that
   // of the analysis, and an unchanged rig gives back the photo.
-  IlluminationOptions illumination = illumination_options(analysis.options);
+  IlluminationOptions illumination = illumination_options(analysis_.options);
   illumination.paths_per_pixel = options.paths_per_pixel;
-  const IlluminationImages light =
-      render_illumination(gbuffer, scene.camera, integrator, illumination, progress, "new illumination");
+  return render_illumination(gbuffer, camera, integrator, illumination, progress, label);
+}
 
-  Image out(scene.photo.width, scene.photo.height);
-  for (size_t i = 0; i < out.size(); ++i) {
-    const float c = analysis.coverage[i];
-    const Vec3 background = c > 0.0f ? Vec3((1.0f - c) * analysis.illumination.background.pixels[i])
-                                     : scene.photo.pixels[i];
-    out.pixels[i] = analysis.albedo.albedo_coverage.pixels[i].cwiseProduct(light.surface.pixels[i]) +
-                    rig.environment_scale * background;
-  }
-  return out;
+Image render_rig(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Analysis& analysis,
+                 const Rig& rig, const RenderOptions& options, Progress& progress) {
+  const NewIllumination renderer(scene, rays, gbuffer, analysis);
+  const IlluminationImages light =
+      renderer.render(gbuffer, scene.camera, renderer.rig_lighting(rig), options, progress, "new illumination");
+  return compose_relit(photo_layers(scene, analysis), light.surface, rig.environment_scale);
 }
 
 Rig rig_from_scene(const Scene& scene) {

@@ -1,16 +1,59 @@
 // Relighting: the photo under a new lighting design. The new illumination
 // (direct light of the rig, the scene's environment x environment_scale, and
 // interreflection off the recovered albedo) multiplies the albedo (thesis
-// chapter 5's modulation, done offline by path tracing).
+// chapter 5's modulation, done offline by path tracing). The interactive
+// session (session.h) renders with the same pieces, so that it converges to
+// exactly this image.
 #pragma once
 
 #include "analysis/analyze.h"
+#include "analysis/surface_albedo.h"
 
 namespace relight {
 
 struct RenderOptions {
   int paths_per_pixel = 64;
   int max_bounces = 4;
+};
+
+// The analysis's layers of a re-lit image, at the photo's size or a view's:
+// the coverage-weighted albedo, and what shows where geometry does not cover
+// a pixel for environment_scale 1 — (1 - c) x the environment behind the
+// pixel, or the photo itself where c = 0.
+struct RelitLayers {
+  Image albedo_coverage;
+  Image background;
+};
+RelitLayers photo_layers(const Scene& scene, const Analysis& analysis);
+
+// The re-lit pixel: c·a·illumination + environment_scale·background.
+Image compose_relit(const RelitLayers& layers, const Image& illumination, float environment_scale);
+
+// Renders new illumination the way render_rig does: the analysis's
+// environment (built once here), interreflection off the recovered albedo,
+// the analysis's seed and settings. Holds references to its arguments.
+class NewIllumination {
+ public:
+  // gbuffer: the analysis's (the photo's) G-buffer.
+  NewIllumination(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Analysis& analysis);
+
+  // The environment at scale 1 (the probes or background, per the strategy).
+  const Environment& environment() const { return environment_; }
+  // The rig's lights and the environment x environment_scale.
+  Lighting rig_lighting(const Rig& rig) const;
+
+  // The illumination of the pixels of `gbuffer` (the photo's, or a view's
+  // made with `camera`) under `lighting`. first_surface_lights false leaves
+  // out the light straight from the lights (see IntegratorOptions).
+  IlluminationImages render(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
+                            const RenderOptions& options, Progress& progress, const std::string& label,
+                            bool first_surface_lights = true) const;
+
+ private:
+  const RayScene& rays_;
+  const Analysis& analysis_;
+  Environment environment_;
+  PhotoAlbedo bounce_albedo_;
 };
 
 // The re-lit photo. Pixels that see no geometry show the photo's background

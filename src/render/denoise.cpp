@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "core/error.h"
+
 namespace relight {
 
 Image denoise_illumination(const Image& noisy, std::vector<float> variance, const GBuffer& g,
@@ -14,6 +16,7 @@ Image denoise_illumination(const Image& noisy, std::vector<float> variance, cons
   std::vector<float> next_variance(variance.size());
 
   for (int pass = 0; pass < options.passes; ++pass) {
+    if (options.progress && options.progress->cancelled()) throw Cancelled();
     const int step = 1 << pass;
     tbb::parallel_for(0, h, [&](int y) {
       for (int x = 0; x < w; ++x) {

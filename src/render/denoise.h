@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/progress.h"
 #include "render/gbuffer.h"
 
 namespace relight {
@@ -18,6 +19,7 @@ struct DenoiseOptions {
   float luminance_sigma = 4.0f; // in standard deviations of the noise
   float normal_power = 64.0f;
   float plane_sigma = 0.01f;    // plane distance, relative to the depth
+  const Progress* progress = nullptr;  // if given, polled between passes: throws Cancelled once cancelled
 };
 
 // variance: per pixel, the variance of the pixel's mean luminance.

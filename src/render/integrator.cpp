@@ -9,7 +9,7 @@ Integrator::Integrator(const RayScene& scene, const Lighting& lighting, const Su
                        IntegratorOptions options)
     : scene_(scene), lighting_(lighting), albedo_(albedo), options_(options) {
   for (const auto& l : lighting_.lights)
-    if (l.enabled && !l.emission().isZero()) active_lights_.push_back(&l);
+    if (l.enabled && !l.emission().isZero()) active_lights_.emplace_back(l);
 }
 
 Vec3 Integrator::environment(const Vec3& origin, const Vec3& dir) const {
@@ -19,13 +19,12 @@ Vec3 Integrator::environment(const Vec3& origin, const Vec3& dir) const {
 
 Vec3 Integrator::from_lights(const SurfacePoint& p, Rng& rng) const {
   Vec3 sum = Vec3::Zero();
-  for (const Light* light : active_lights_) {
-    const LightSample s = sample_light(*light, p.position, p.normal, rng.uniform2());
+  for (const LightSampler& light : active_lights_) {
+    const LightSample s = light.sample(p.position, p.normal, rng.uniform2());
     if (s.irradiance.isZero()) continue;
     if (s.direction.dot(p.geometric_normal) <= 0.0f) continue;  // below the actual surface
-    const Vec3 origin = scene_.offset_origin(p, s.direction);
-    const float tmax = std::isfinite(s.distance) ? s.distance * (1.0f - 1e-4f) : s.distance;
-    if (!scene_.occluded(origin, s.direction, tmax)) sum += s.irradiance;
+    const ShadowRay ray = scene_.shadow_ray(p, s.direction, s.distance);
+    if (!scene_.occluded(ray.origin, ray.dir, ray.tmax)) sum += s.irradiance;
   }
   return sum * kInvPi;
 }
@@ -51,7 +50,7 @@ Vec3 Integrator::from_environment(const SurfacePoint& p, const ProbeEnvironment*
 
 void Integrator::illumination(const SurfacePoint& start, Rng& rng, Vec3& direct, Vec3& indirect) const {
   const Environment& env = lighting_.environment;
-  direct = from_lights(start, rng);
+  direct = options_.first_surface_lights ? from_lights(start, rng) : Vec3::Zero();
   Vec3& result = indirect;
   result = Vec3::Zero();
   Vec3 throughput = Vec3::Ones();

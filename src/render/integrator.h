@@ -36,6 +36,10 @@ struct Lighting {
 struct IntegratorOptions {
   int max_bounces = 4;  // diffuse bounces after the first surface (0: direct light only)
   int roulette_after = 2;  // Russian roulette from this bounce on
+  // false: leave out the light reaching the first surface straight from the
+  // lights (`direct` stays 0), for renders that add it apart (the
+  // interactive engine renders each light's direct light by itself).
+  bool first_surface_lights = true;
 };
 
 class Integrator {
@@ -68,7 +72,7 @@ class Integrator {
   const Lighting& lighting_;
   const SurfaceAlbedo* albedo_;
   IntegratorOptions options_;
-  std::vector<const Light*> active_lights_;
+  std::vector<LightSampler> active_lights_;
 };
 
 }  // namespace relight

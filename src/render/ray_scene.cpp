@@ -4,7 +4,10 @@
 #include <embree3/rtcore.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace relight {
 
@@ -98,10 +101,49 @@ bool RayScene::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {
   return ray.tfar < 0.0f;
 }
 
+void RayScene::occluded(std::span<const ShadowRay> rays, std::span<uint8_t> blocked) const {
+  // Packets of 16 rays (Embree's widest): neighbouring, coherent rays share
+  // the traversal of the BVH nodes they all cross.
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  for (size_t start = 0; start < rays.size(); start += 16) {
+    const size_t n = std::min<size_t>(16, rays.size() - start);
+    alignas(64) RTCRay16 packet;
+    alignas(64) int valid[16];
+    for (size_t j = 0; j < 16; ++j) {
+      const ShadowRay* r = j < n ? &rays[start + j] : nullptr;
+      valid[j] = (r && r->tmax > 0.0f) ? -1 : 0;
+      if (!valid[j]) {
+        packet.org_x[j] = packet.org_y[j] = packet.org_z[j] = 0.0f;
+        packet.dir_x[j] = packet.dir_y[j] = 0.0f;
+        packet.dir_z[j] = 1.0f;
+        packet.tnear[j] = 0.0f;
+        packet.tfar[j] = 0.0f;
+      } else {
+        packet.org_x[j] = r->origin.x(), packet.org_y[j] = r->origin.y(), packet.org_z[j] = r->origin.z();
+        packet.dir_x[j] = r->dir.x(), packet.dir_y[j] = r->dir.y(), packet.dir_z[j] = r->dir.z();
+        packet.tnear[j] = 0.0f;
+        packet.tfar[j] = r->tmax;
+      }
+      packet.mask[j] = ~0u;
+      packet.time[j] = 0.0f;
+      packet.id[j] = 0;
+      packet.flags[j] = 0;
+    }
+    rtcOccluded16(valid, embree_->scene, &context, &packet);
+    for (size_t j = 0; j < n; ++j) blocked[start + j] = valid[j] && packet.tfar[j] < 0.0f;
+  }
+}
+
 Vec3 RayScene::offset_origin(const SurfacePoint& p, const Vec3& towards) const {
   const float scale = epsilon_ + 1e-5f * p.position.cwiseAbs().maxCoeff();
   const Vec3& ng = p.geometric_normal;
   return p.position + (ng.dot(towards) >= 0.0f ? scale : -scale) * ng;
+}
+
+ShadowRay RayScene::shadow_ray(const SurfacePoint& p, const Vec3& dir, float distance) const {
+  return {offset_origin(p, dir), dir, std::isfinite(distance) ? distance * (1.0f - 1e-4f) : distance};
 }
 
 }  // namespace relight

@@ -72,6 +72,12 @@ PixelSums trace_pixels(const GBuffer& gbuffer, const Camera& camera, const Integ
   return r;
 }
 
+bool all_zero(const Image& image) {
+  for (const Vec3& p : image.pixels)
+    if (!p.isZero()) return false;
+  return true;
+}
+
 }  // namespace
 
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
@@ -80,12 +86,18 @@ IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& cam
   PixelSums r = trace_pixels(gbuffer, camera, integrator, nullptr, options.paths_per_pixel, options.seed, progress,
                              label);
   if (options.denoise) {
-    r.indirect = denoise_illumination(r.indirect, std::move(r.indirect_variance), gbuffer);
+    DenoiseOptions indirect_options;
+    indirect_options.progress = &progress;
+    r.indirect = denoise_illumination(r.indirect, std::move(r.indirect_variance), gbuffer, indirect_options);
     // Direct light has sharp shadow edges: filter it only where its noise is
-    // far above the local differences (soft shadows of area lights).
+    // far above the local differences (soft shadows of area lights). A render
+    // without direct light (the interactive engine renders it apart) has
+    // nothing to filter.
     DenoiseOptions direct_options;
     direct_options.luminance_sigma = 1.0f;
-    r.direct = denoise_illumination(r.direct, std::move(r.direct_variance), gbuffer, direct_options);
+    direct_options.progress = &progress;
+    if (!all_zero(r.direct))
+      r.direct = denoise_illumination(r.direct, std::move(r.direct_variance), gbuffer, direct_options);
   }
   for (size_t i = 0; i < r.out.surface.size(); ++i) r.out.surface.pixels[i] = r.direct.pixels[i] + r.indirect.pixels[i];
   return std::move(r.out);

@@ -18,29 +18,77 @@ const char* to_string(LightType type) {
   return "?";
 }
 
-float spot_factor(const Light& light, float c) {
-  const float c0 = std::cos(radians(light.spot_angle_deg) * 0.5f);
+namespace {
+
+// FORMAT.md's spot cone factor c*s, with c0 = cos(spot_angle/2).
+float spot_cone(float c0, float blend, float c) {
   if (c <= c0) return 0.0f;
   float s = 1.0f;
-  if (light.blend > 0.0f) {
-    const float t = std::clamp((c - c0) / ((1.0f - c0) * light.blend), 0.0f, 1.0f);
+  if (blend > 0.0f) {
+    const float t = std::clamp((c - c0) / ((1.0f - c0) * blend), 0.0f, 1.0f);
     s = t * t * (3.0f - 2.0f * t);
   }
   return c * s;
 }
 
-namespace {
+float half_angle_cosine(float full_angle_deg) { return std::cos(radians(full_angle_deg) * 0.5f); }
+
+}  // namespace
+
+float spot_factor(const Light& light, float c) {
+  return spot_cone(half_angle_cosine(light.spot_angle_deg), light.blend, c);
+}
+
+LightSampler::LightSampler(const Light& light) : light_(light), emission_(light.emission()) {
+  switch (light.type) {
+    case LightType::point: break;
+    case LightType::spot:
+      axis_ = light.direction.normalized();
+      cos_outer_ = half_angle_cosine(light.spot_angle_deg);
+      break;
+    case LightType::area:
+      axis_ = light.direction.normalized();
+      side_w_ = axis_.cross(light.up).normalized();
+      side_h_ = side_w_.cross(axis_);
+      break;
+    case LightType::directional:
+      axis_ = -light.direction.normalized();
+      cos_outer_ = half_angle_cosine(light.angle_deg);
+      break;
+  }
+}
+
+bool LightSampler::needs_random() const {
+  switch (light_.type) {
+    case LightType::point:
+    case LightType::spot: return light_.radius > 0.0f;
+    case LightType::area: return true;
+    case LightType::directional: return light_.angle_deg > 0.0f;
+  }
+  return true;
+}
+
+LightSample LightSampler::sample(const Vec3& p, const Vec3& n, const Vec2& u) const {
+  switch (light_.type) {
+    case LightType::point:
+    case LightType::spot: return sample_point_like(p, n, u);
+    case LightType::area: return sample_area(p, n, u);
+    case LightType::directional: return sample_directional(n, u);
+  }
+  return {};
+}
 
 // Point and spot lights: intensity I = power/(4 pi) (times the spot factor),
 // from a point or, with a radius, from a disc of radiance power/(4 pi^2 r^2)
 // facing the surface point (FORMAT.md).
-LightSample sample_point_like(const Light& light, const Vec3& p, const Vec3& n, const Vec2& u) {
+LightSample LightSampler::sample_point_like(const Vec3& p, const Vec3& n, const Vec2& u) const {
+  const Light& light = light_;
   LightSample s{};
   const Vec3 to_light_center = light.position - p;
   const float d2_center = to_light_center.squaredNorm();
   const Vec3 axis = to_light_center.normalized();  // disc normal faces p
   float cone = 1.0f;
-  if (light.type == LightType::spot) cone = spot_factor(light, (-axis).dot(light.direction.normalized()));
+  if (light.type == LightType::spot) cone = spot_cone(cos_outer_, light.blend, (-axis).dot(axis_));
   Vec3 target = light.position;
   if (light.radius > 0.0f) {
     const Vec2 d = sample_concentric_disc(u) * light.radius;
@@ -56,64 +104,45 @@ LightSample sample_point_like(const Light& light, const Vec3& p, const Vec3& n, 
     s.irradiance = Vec3::Zero();
     return s;
   }
-  const Vec3 emission = light.emission();
   if (light.radius <= 0.0f) {
-    s.irradiance = emission * (cone * cos_surface / (4.0f * kPi * s.distance * s.distance));
+    s.irradiance = emission_ * (cone * cos_surface / (4.0f * kPi * s.distance * s.distance));
   } else {
     // L_e cos_s cos_l A / dist^2 with L_e = P/(4 pi^2 r^2), A = pi r^2.
     const float cos_light = std::max(0.0f, axis.dot(s.direction));
-    s.irradiance = emission * (cone * cos_surface * cos_light / (4.0f * kPi * s.distance * s.distance));
+    s.irradiance = emission_ * (cone * cos_surface * cos_light / (4.0f * kPi * s.distance * s.distance));
   }
   return s;
 }
 
 // One-sided rectangle of radiance power/(4 w h), sampled uniformly by area.
-LightSample sample_area(const Light& light, const Vec3& p, const Vec3& n, const Vec2& u) {
+LightSample LightSampler::sample_area(const Vec3& p, const Vec3& n, const Vec2& u) const {
+  const Light& light = light_;
   LightSample s{};
-  const Vec3 normal = light.direction.normalized();
-  const Vec3 side_w = normal.cross(light.up).normalized();  // the w side
-  const Vec3 side_h = side_w.cross(normal);                 // the h side, along `up`
-  const Vec3 q = light.position + (u.x() - 0.5f) * light.size.x() * side_w + (u.y() - 0.5f) * light.size.y() * side_h;
+  const Vec3 q = light.position + (u.x() - 0.5f) * light.size.x() * side_w_ + (u.y() - 0.5f) * light.size.y() * side_h_;
   const Vec3 to_light = q - p;
   s.distance = to_light.norm();
   s.direction = to_light / s.distance;
   const float cos_surface = n.dot(s.direction);
-  const float cos_light = -normal.dot(s.direction);
+  const float cos_light = -axis_.dot(s.direction);
   if (cos_surface <= 0.0f || cos_light <= 0.0f) {
     s.irradiance = Vec3::Zero();
     return s;
   }
   const float area = light.size.x() * light.size.y();
-  const Vec3 radiance = light.emission() / (4.0f * area);
+  const Vec3 radiance = emission_ / (4.0f * area);
   s.irradiance = radiance * (cos_surface * cos_light * area / (s.distance * s.distance));
   return s;
 }
 
 // Sun: irradiance on a facing surface; a disc of angular diameter angle_deg
 // sampled uniformly in its cone.
-LightSample sample_directional(const Light& light, const Vec3& n, const Vec2& u) {
+LightSample LightSampler::sample_directional(const Vec3& n, const Vec2& u) const {
   LightSample s{};
-  const Vec3 to_sun = -light.direction.normalized();
-  s.direction = to_sun;
-  if (light.angle_deg > 0.0f) {
-    const float cos_max = std::cos(radians(light.angle_deg) * 0.5f);
-    s.direction = to_world(sample_uniform_cone(u, cos_max), to_sun);
-  }
+  s.direction = axis_;
+  if (light_.angle_deg > 0.0f) s.direction = to_world(sample_uniform_cone(u, cos_outer_), axis_);
   s.distance = std::numeric_limits<float>::infinity();
-  s.irradiance = light.emission() * std::max(0.0f, n.dot(s.direction));
+  s.irradiance = emission_ * std::max(0.0f, n.dot(s.direction));
   return s;
-}
-
-}  // namespace
-
-LightSample sample_light(const Light& light, const Vec3& p, const Vec3& n, const Vec2& u) {
-  switch (light.type) {
-    case LightType::point:
-    case LightType::spot: return sample_point_like(light, p, n, u);
-    case LightType::area: return sample_area(light, p, n, u);
-    case LightType::directional: return sample_directional(light, n, u);
-  }
-  return {};
 }
 
 }  // namespace relight

@@ -40,9 +40,36 @@ struct LightSample {
   Vec3 irradiance;     // unbiased estimate of the light's irradiance at the point, unoccluded
 };
 
-// Samples the light from point p with unit normal n; u in [0,1)^2. The
-// irradiance is zero when the light is behind the surface or outside a cone.
-LightSample sample_light(const Light& light, const Vec3& p, const Vec3& n, const Vec2& u);
+// A light prepared for sampling from many points: its per-light constants
+// (normalised axes, cone cosine, emission) worked out once.
+class LightSampler {
+ public:
+  explicit LightSampler(const Light& light);
+  // Samples the light from point p with unit normal n; u in [0,1)^2. The
+  // irradiance is zero when the light is behind the surface or outside a cone.
+  LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
+  // False where every u gives the same sample (a point or spot without
+  // radius, a sun without angle): one sample is then exact.
+  bool needs_random() const;
+  const Light& light() const { return light_; }
+
+ private:
+  LightSample sample_point_like(const Vec3& p, const Vec3& n, const Vec2& u) const;
+  LightSample sample_area(const Vec3& p, const Vec3& n, const Vec2& u) const;
+  LightSample sample_directional(const Vec3& n, const Vec2& u) const;
+
+  Light light_;
+  Vec3 emission_;
+  Vec3 axis_;               // spot/area: unit direction; sun: unit direction towards it
+  float cos_outer_ = -1.0f; // spot: cos(spot_angle/2); sun: cos(angle/2)
+  Vec3 side_w_, side_h_;    // area: the w and h sides, unit
+};
+
+// Samples the light from point p with unit normal n; u in [0,1)^2 (one
+// sample of LightSampler(light)).
+inline LightSample sample_light(const Light& light, const Vec3& p, const Vec3& n, const Vec2& u) {
+  return LightSampler(light).sample(p, n, u);
+}
 
 // Spot cone factor c*s of FORMAT.md for the cosine c between the spot
 // direction and the direction from the light to the point.

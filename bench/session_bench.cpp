@@ -1,0 +1,199 @@
+// The interactive engine: frame time while dragging one light of four, for
+// each backend at 640x480 and 1280x720, and the time the view takes to
+// converge (to the render of `relight render`) once the light is let go.
+// On the reference scene `bookcase` where ../shared/scenes holds it
+// (RELIGHT_SCENES overrides), else on the example room. Results and the
+// machine they ran on: docs/benchmarks.md, "Interactive relighting".
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "io/scene_io.h"
+#include "relight/session.h"
+#include "room_scene.h"
+
+using namespace relight;
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The scene, with a quick analysis: the engine's speed does not depend on
+// how good the albedo is.
+struct Fixture {
+  Scene scene;
+  std::unique_ptr<RayScene> rays;
+  std::unique_ptr<GBuffer> gbuffer;
+  Analysis analysis;
+  Rig rig;
+
+  Fixture() {
+    fs::path folder = fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes" / "bookcase";
+    if (const char* env = std::getenv("RELIGHT_SCENES")) folder = fs::path(env) / "bookcase";
+    if (fs::exists(folder / "scene.json")) {
+      scene = load_scene(folder / "scene.json");
+    } else {
+      scene = example::room_scene(640, 480);
+      scene.path = "room";
+      scene.photo = Image(640, 480, Vec3::Constant(0.2f));
+    }
+    std::fprintf(stderr, "session_bench: scene %s (%zu triangles)\n", scene.path.string().c_str(),
+                 scene.mesh.triangles.size());
+    rays = std::make_unique<RayScene>(scene.mesh);
+    AnalysisOptions options;
+    options.strategy = Strategy::lights;
+    options.paths_per_pixel = 4;
+    options.interreflection = false;
+    gbuffer = std::make_unique<GBuffer>(scene_gbuffer(scene, *rays, options));
+    analysis = analyze(scene, *rays, *gbuffer, options, Progress::silent());
+    rig = four_lights();
+  }
+
+  // A point and a spot (the ones dragged), an area light and a soft point,
+  // placed around what the camera looks at.
+  Rig four_lights() const {
+    const CameraSpec& camera = scene.camera.spec();
+    const Vec3 target = camera.look_at, to_camera = camera.position - target;
+    const float d = to_camera.norm();
+    const Vec3 up = camera.up.normalized(), side = to_camera.cross(up).normalized();
+    const Vec3 front = target + 0.5f * to_camera;
+    Rig r;
+    r.environment_scale = 0.5f;
+    Light point;
+    point.type = LightType::point;
+    point.name = "point";
+    point.position = front + 0.3f * d * side + 0.3f * d * up;
+    point.power = 40.0f * d * d;
+    Light spot = point;
+    spot.type = LightType::spot;
+    spot.name = "spot";
+    spot.position = front - 0.3f * d * side + 0.4f * d * up;
+    spot.direction = (target - spot.position).normalized();
+    spot.spot_angle_deg = 40.0f;
+    spot.blend = 0.2f;
+    spot.color = Vec3(0.6f, 0.8f, 1.0f);
+    Light area;
+    area.type = LightType::area;
+    area.name = "area";
+    area.position = front + 0.5f * d * up;
+    area.direction = (target - area.position).normalized();
+    area.up = up;
+    area.size = Vec2(0.15f * d, 0.15f * d);
+    area.power = 20.0f * d * d;
+    Light soft = point;
+    soft.name = "soft point";
+    soft.position = front - 0.4f * d * side + 0.1f * d * up;
+    soft.radius = 0.03f * d;
+    soft.color = Vec3(1.0f, 0.7f, 0.4f);
+    r.lights = {point, spot, area, soft};
+    return r;
+  }
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+const int kSizes[2][2] = {{640, 480}, {1280, 720}};
+
+// The session for a backend and size; one at a time, so that no other
+// session's refinement runs beside the one measured.
+RelightSession& session(Backend backend, int size) {
+  static std::unique_ptr<RelightSession> s;
+  static std::pair<Backend, int> made_for;
+  if (!s || made_for != std::pair{backend, size}) {
+    s.reset();
+    made_for = {backend, size};
+    Fixture& f = fixture();
+    SessionOptions options;
+    options.backend = backend;
+    options.width = kSizes[size][0];
+    options.height = kSizes[size][1];
+    s = std::make_unique<RelightSession>(f.scene, *f.rays, *f.gbuffer, f.analysis, f.rig, options);
+    s->wait_for_edit(1);
+  }
+  return *s;
+}
+
+double percentile(std::vector<double> v, double share) {
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, size_t(std::ceil(share * double(v.size()))) - 1)];
+}
+
+// Light `index` one step further around a circle about where it started.
+Light dragged(int index, int step) {
+  const Fixture& f = fixture();
+  Light light = f.rig.lights[size_t(index)];
+  const float radius = 0.1f * (f.scene.camera.spec().position - f.scene.camera.spec().look_at).norm();
+  const float angle = 0.1f * float(step);
+  Vec3 a, b;
+  orthonormal_basis(f.scene.camera.spec().up.normalized(), a, b);
+  light.position += radius * (std::cos(angle) * a + std::sin(angle) * b);
+  return light;
+}
+
+// Arguments: backend (0 cpu, 1 gl), size (0: 640x480, 1: 1280x720), the
+// light dragged (0 point, 1 spot).
+void BM_DragOneLightOfFour(benchmark::State& state) {
+  const Backend backend = state.range(0) ? Backend::gl : Backend::cpu;
+  const int size = int(state.range(1)), index = int(state.range(2));
+  RelightSession& s = session(backend, size);
+  if (s.backend() != backend) {
+    state.SkipWithError(("OpenGL unavailable: " + s.backend_note()).c_str());
+    return;
+  }
+  std::vector<double> ms;
+  int step = 0;
+  for (auto _ : state) {
+    const auto start = Clock::now();
+    s.wait_for_edit(s.set_light(size_t(index), dragged(index, ++step)));
+    const double secs = std::chrono::duration<double>(Clock::now() - start).count();
+    state.SetIterationTime(secs);
+    ms.push_back(1e3 * secs);
+  }
+  s.set_light(size_t(index), fixture().rig.lights[size_t(index)]);
+  state.counters["median_ms"] = percentile(ms, 0.5);
+  state.counters["p95_ms"] = percentile(ms, 0.95);
+  state.SetLabel(std::string(to_string(backend)) + " " + std::to_string(kSizes[size][0]) + "x" +
+                 std::to_string(kSizes[size][1]) + " dragging the " + fixture().rig.lights[size_t(index)].name);
+}
+BENCHMARK(BM_DragOneLightOfFour)
+    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1}})
+    ->Iterations(60)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+// From letting go of the dragged point light to the converged frame (the
+// final render at relight render's defaults: 64 paths per pixel, 4 bounces),
+// starting from a converged view.
+void BM_ConvergeAfterRelease(benchmark::State& state) {
+  const Backend backend = state.range(0) ? Backend::gl : Backend::cpu;
+  RelightSession& s = session(backend, int(state.range(1)));
+  if (s.backend() != backend) {
+    state.SkipWithError(("OpenGL unavailable: " + s.backend_note()).c_str());
+    return;
+  }
+  s.wait_until_converged();
+  int step = 0;
+  for (auto _ : state) {
+    s.wait_for_edit(s.set_light(0, dragged(0, ++step)));
+    const auto start = Clock::now();
+    s.wait_until_converged();
+    state.SetIterationTime(std::chrono::duration<double>(Clock::now() - start).count());
+  }
+}
+BENCHMARK(BM_ConvergeAfterRelease)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

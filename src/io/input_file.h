@@ -1,0 +1,14 @@
+// The checks every loader makes before it opens a path, so that a missing
+// file, a folder, a device or an unreadable path is a one-line InputError
+// rather than a library's exception or a read that never ends.
+#pragma once
+
+#include <filesystem>
+
+namespace relight {
+
+// Throws InputError unless `path` is an existing regular file; `expected`
+// names what it should be ("an image file").
+void expect_input_file(const std::filesystem::path& path, const char* expected);
+
+}  // namespace relight

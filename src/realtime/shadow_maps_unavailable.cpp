@@ -1,0 +1,23 @@
+// The OpenGL backend where relight was built without libepoxy: never opens.
+#include "realtime/shadow_maps.h"
+
+namespace relight {
+
+struct GlRelighter::State {};
+
+std::unique_ptr<GlRelighter> GlRelighter::open(const TriangleMesh&, const PixelSurfaces&, const Image&,
+                                               const ShadowMapOptions&, std::string& why) {
+  why = "relight was built without libepoxy";
+  return nullptr;
+}
+
+GlRelighter::GlRelighter(std::unique_ptr<State> state) : state_(std::move(state)) {}
+GlRelighter::~GlRelighter() = default;
+const std::string& GlRelighter::renderer() const {
+  static const std::string none = "none";
+  return none;
+}
+void GlRelighter::render(const Light&, Image&) {}
+Image GlRelighter::relight(const std::vector<Light>&) { return {}; }
+
+}  // namespace relight

@@ -1,0 +1,489 @@
+#include "relight/session.h"
+
+#include <spdlog/spdlog.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <limits>
+#include <optional>
+
+#include "core/error.h"
+
+namespace relight {
+
+const char* to_string(Backend backend) { return backend == Backend::gl ? "gl" : "cpu"; }
+
+const char* to_string(FrameQuality quality) {
+  switch (quality) {
+    case FrameQuality::interactive: return "interactive";
+    case FrameQuality::refining: return "refining";
+    case FrameQuality::converged: return "converged";
+  }
+  return "?";
+}
+
+namespace {
+
+// How far a light's cached direct light has got, for the geometry it was rendered for.
+enum class Stage { none, interactive, antialiased, soft };
+
+// Whether two versions of a light differ in what their unit-emission images
+// depend on: everything but colour, power (irradiance) and enabled.
+bool same_geometry(const Light& a, const Light& b) {
+  return a.type == b.type && a.position == b.position && a.direction == b.direction && a.up == b.up &&
+         a.radius == b.radius && a.spot_angle_deg == b.spot_angle_deg && a.blend == b.blend && a.size == b.size &&
+         a.angle_deg == b.angle_deg;
+}
+
+bool has_extent(const Light& light) { return LightSampler(light).needs_random(); }
+
+constexpr uint64_t kNothing = std::numeric_limits<uint64_t>::max();  // no image rendered yet
+
+}  // namespace
+
+struct RelightSession::LightCache {
+  uint64_t id = 0;
+  Light light;
+  uint64_t geometry = 0;         // the edit that last moved or re-shaped the light
+  Image direct;                  // unit emission; empty until rendered
+  uint64_t direct_geometry = 0;  // the geometry `direct` was rendered for
+  Stage stage = Stage::none;
+  Image bounce;                  // its interreflection, unit emission; empty: none yet
+  uint64_t bounce_geometry = 0;
+
+  bool pending() const { return light.enabled && direct_geometry != geometry; }
+};
+
+struct RelightSession::Job {
+  enum class Kind { interactive, antialiased, soft, environment, bounce, final } kind;
+  uint64_t light_id = 0;
+  uint64_t geometry = 0;  // of the light, when the job was made
+  uint64_t edit = 0;      // the session's, when the job was made
+  Light light;
+  Rig rig;                // final
+  Image result;
+  std::atomic<bool> cancel{false};
+  Progress progress{false};  // render_illumination's cancel flag
+  bool done = false;
+
+  void request_cancel() {
+    cancel = true;
+    progress.cancel();
+  }
+  bool is_refinement() const { return kind != Kind::interactive; }
+};
+
+// What a frame is composed of, taken under the lock.
+struct RelightSession::Composition {
+  struct Term {
+    std::shared_ptr<LightCache> light;
+    Vec3 emission;
+  };
+  std::vector<Term> others;          // enabled lights but the focus
+  std::optional<Term> focus;         // the focus light, if enabled
+  float scale = 1.0f;
+  bool rebuild_base = false;
+  std::shared_ptr<const Image> final;
+  uint64_t edit = 0;                 // every edit up to this one is shown
+  FrameQuality quality = FrameQuality::interactive;
+};
+
+RelightSession::RelightSession(const Scene& scene, const RayScene& rays, const GBuffer& photo_gbuffer,
+                               const Analysis& analysis, const Rig& rig, const SessionOptions& options)
+    : scene_(scene),
+      rays_(rays),
+      analysis_(analysis),
+      options_(options),
+      illumination_(scene, rays, photo_gbuffer, analysis),
+      view_(std::make_unique<RelightView>(scene, rays, photo_gbuffer, analysis, illumination_.environment(),
+                                          options.width, options.height)) {
+  if (options_.backend == Backend::gl) {
+    std::string why;
+    fast_ = GlRelighter::open(scene.mesh, view_->surfaces(), view_->layers().albedo_coverage, options_.shadow_maps,
+                              why);
+    if (fast_) {
+      backend_ = Backend::gl;
+    } else {
+      backend_note_ = "OpenGL unavailable (" + why + "): using the CPU backend";
+      spdlog::warn("{}", backend_note_);
+    }
+  }
+  if (!fast_) fast_ = std::make_unique<CpuDirectLight>(view_->surfaces(), rays_, analysis_.options.seed);
+
+  environment_scale_ = rig.environment_scale;
+  for (const Light& light : rig.lights) {
+    auto cache = std::make_shared<LightCache>();
+    cache->id = next_light_id_++;
+    cache->light = light;
+    cache->geometry = edit_;  // the rig is edit 1
+    cache->direct_geometry = kNothing;
+    lights_.push_back(std::move(cache));
+  }
+  last_edit_time_ = std::chrono::steady_clock::now();  // the starting rig counts as an edit
+  worker_ = std::thread([this] { run_worker(); });
+}
+
+RelightSession::~RelightSession() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+    if (running_) running_->request_cancel();
+  }
+  work_changed_.notify_all();
+  worker_.join();
+}
+
+// ---- edits (caller's thread) ----
+
+uint64_t RelightSession::edited_locked(uint64_t light_id, bool geometry) {
+  const uint64_t edit = ++edit_;
+  last_edit_time_ = std::chrono::steady_clock::now();
+  final_.reset();
+  dirty_ = true;
+  if (geometry) {
+    // A light moves: it becomes the focus, and whatever refines gives way.
+    if (focus_ != light_id) base_valid_ = false;
+    focus_ = light_id;
+    if (running_ && running_->is_refinement()) running_->request_cancel();
+  } else {
+    base_valid_ = false;
+    if (running_ && running_->kind == Job::Kind::final) running_->request_cancel();
+  }
+  work_changed_.notify_all();
+  return edit;
+}
+
+uint64_t RelightSession::add_light(const Light& light) {
+  std::lock_guard lock(mutex_);
+  auto cache = std::make_shared<LightCache>();
+  cache->id = next_light_id_++;
+  cache->light = light;
+  cache->direct_geometry = kNothing;
+  lights_.push_back(cache);
+  const uint64_t edit = edited_locked(cache->id, true);
+  cache->geometry = edit;
+  return edit;
+}
+
+uint64_t RelightSession::set_light(size_t index, const Light& light) {
+  std::lock_guard lock(mutex_);
+  if (index >= lights_.size()) throw std::out_of_range("RelightSession::set_light: no light " + std::to_string(index));
+  LightCache& cache = *lights_[index];
+  const bool geometry = !same_geometry(cache.light, light);
+  cache.light = light;
+  const uint64_t edit = edited_locked(cache.id, geometry);
+  if (geometry) cache.geometry = edit;
+  return edit;
+}
+
+uint64_t RelightSession::remove_light(size_t index) {
+  std::lock_guard lock(mutex_);
+  if (index >= lights_.size())
+    throw std::out_of_range("RelightSession::remove_light: no light " + std::to_string(index));
+  const uint64_t id = lights_[index]->id;
+  lights_.erase(lights_.begin() + std::ptrdiff_t(index));
+  if (focus_ == id) focus_ = 0;
+  if (running_ && running_->light_id == id) running_->request_cancel();
+  return edited_locked(id, false);
+}
+
+uint64_t RelightSession::set_environment_scale(float scale) {
+  std::lock_guard lock(mutex_);
+  environment_scale_ = scale;
+  return edited_locked(0, false);
+}
+
+Rig RelightSession::rig() const {
+  std::lock_guard lock(mutex_);
+  Rig rig;
+  rig.environment_scale = environment_scale_;
+  for (const auto& cache : lights_) rig.lights.push_back(cache->light);
+  return rig;
+}
+
+uint64_t RelightSession::last_edit() const {
+  std::lock_guard lock(mutex_);
+  return edit_;
+}
+
+SessionStats RelightSession::stats() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+Frame RelightSession::frame() const {
+  std::lock_guard lock(mutex_);
+  return frame_;
+}
+
+Frame RelightSession::wait_for_edit(uint64_t edit) {
+  std::unique_lock lock(mutex_);
+  frame_changed_.wait(lock, [&] { return frame_.image && frame_.edit >= edit; });
+  return frame_;
+}
+
+Frame RelightSession::wait_until_converged() {
+  std::unique_lock lock(mutex_);
+  frame_changed_.wait(
+      lock, [&] { return frame_.image && frame_.quality == FrameQuality::converged && frame_.edit == edit_; });
+  return frame_;
+}
+
+// ---- the worker ----
+
+std::shared_ptr<RelightSession::LightCache> RelightSession::find_light_locked(uint64_t id) const {
+  for (const auto& cache : lights_)
+    if (cache->id == id) return cache;
+  return nullptr;
+}
+
+// The next thing to render: a light that moved, at once; once edits have
+// settled, the refinements from the cheapest to the final render.
+std::unique_ptr<RelightSession::Job> RelightSession::next_job_locked(std::chrono::steady_clock::time_point& wake_at) {
+  using Kind = Job::Kind;
+  auto job = std::make_unique<Job>();
+  job->edit = edit_;
+  const auto for_light = [&](Kind kind, const LightCache& cache) {
+    job->kind = kind;
+    job->light_id = cache.id;
+    job->geometry = cache.geometry;
+    job->light = unit_light(cache.light);
+    return std::move(job);
+  };
+
+  // The light moved last first: it is the one being dragged.
+  const LightCache* moved = nullptr;
+  for (const auto& cache : lights_)
+    if (cache->pending() && (!moved || cache->geometry > moved->geometry)) moved = cache.get();
+  if (moved) return for_light(Kind::interactive, *moved);
+
+  wake_at = last_edit_time_ + options_.settle;
+  if (std::chrono::steady_clock::now() < wake_at) return nullptr;
+  wake_at = std::chrono::steady_clock::time_point::max();
+
+  for (const auto& cache : lights_)
+    if (cache->light.enabled && cache->stage < Stage::antialiased) return for_light(Kind::antialiased, *cache);
+  for (const auto& cache : lights_)
+    if (cache->light.enabled && cache->stage < Stage::soft && has_extent(cache->light))
+      return for_light(Kind::soft, *cache);
+  if (environment_.empty()) {
+    job->kind = Kind::environment;
+    return job;
+  }
+  for (const auto& cache : lights_)
+    if (cache->light.enabled && cache->bounce_geometry != cache->geometry) return for_light(Kind::bounce, *cache);
+  if (!final_) {
+    job->kind = Kind::final;
+    job->rig.environment_scale = environment_scale_;
+    for (const auto& cache : lights_) job->rig.lights.push_back(cache->light);
+    return job;
+  }
+  return nullptr;
+}
+
+void RelightSession::run_job(Job& job) {
+  using Kind = Job::Kind;
+  const RelightView& view = *view_;
+  const RenderOptions bounce_options{options_.bounce_paths, options_.final_render.max_bounces};
+  DirectLightSettings direct;
+  direct.seed = analysis_.options.seed;
+  try {
+    switch (job.kind) {
+      case Kind::interactive:
+        fast_->render(job.light, job.result);
+        job.done = true;
+        break;
+      case Kind::antialiased:  // every sub-pixel sample, one light sample each
+        direct.pass = 1;
+        job.done = render_direct_light(view.gbuffer(), rays_, job.light, direct, job.result, &job.cancel);
+        break;
+      case Kind::soft: {
+        const int spp = view.gbuffer().samples_per_pixel();
+        direct.pass = 2;
+        direct.light_samples = std::max(1, (options_.soft_light_samples + spp - 1) / spp);
+        job.done = render_direct_light(view.gbuffer(), rays_, job.light, direct, job.result, &job.cancel);
+        break;
+      }
+      case Kind::environment: {
+        Lighting lighting;
+        lighting.environment = illumination_.environment();
+        job.result = illumination_.render(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress,
+                                          "environment").surface;
+        job.done = true;
+        break;
+      }
+      case Kind::bounce: {
+        if (bounce_options.max_bounces == 0) {
+          job.result = Image(view.width(), view.height());
+        } else {
+          Lighting lighting;
+          lighting.lights = {job.light};
+          job.result = illumination_.render(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress,
+                                            "interreflection", false).surface;
+        }
+        job.done = true;
+        break;
+      }
+      case Kind::final: {
+        const IlluminationImages light = illumination_.render(
+            view.gbuffer(), view.camera(), illumination_.rig_lighting(job.rig), options_.final_render, job.progress,
+            "new illumination");
+        job.result = compose_relit(view.layers(), light.surface, job.rig.environment_scale);
+        job.done = true;
+        break;
+      }
+    }
+  } catch (const Cancelled&) {
+    job.done = false;
+  }
+}
+
+void RelightSession::install_locked(Job& job) {
+  using Kind = Job::Kind;
+  if (!job.done) {
+    ++stats_.cancelled;
+    return;
+  }
+  ++(job.kind == Kind::interactive ? stats_.interactive_renders : stats_.refinements);
+  if (job.kind == Kind::environment) {
+    environment_ = std::move(job.result);
+    base_valid_ = false;
+    dirty_ = true;
+    return;
+  }
+  if (job.kind == Kind::final) {
+    if (job.edit == edit_) {
+      final_ = std::make_shared<const Image>(std::move(job.result));
+      dirty_ = true;
+    }
+    return;
+  }
+  const std::shared_ptr<LightCache> cache = find_light_locked(job.light_id);
+  if (!cache) return;
+  // A refinement of a light that has moved since is worth nothing; the
+  // interactive image of a light that moved on still shows it nearer to
+  // where it is than the one before.
+  if (job.kind != Kind::interactive && job.geometry != cache->geometry) return;
+  switch (job.kind) {
+    case Kind::interactive:
+      cache->direct = std::move(job.result);
+      cache->direct_geometry = job.geometry;
+      cache->stage = Stage::interactive;
+      break;
+    case Kind::antialiased:
+    case Kind::soft:
+      cache->direct = std::move(job.result);
+      cache->direct_geometry = job.geometry;
+      cache->stage = (job.kind == Kind::soft || !has_extent(cache->light)) ? Stage::soft : Stage::antialiased;
+      break;
+    case Kind::bounce:
+      cache->bounce = std::move(job.result);
+      cache->bounce_geometry = job.geometry;
+      base_valid_ = false;  // the base holds every light's interreflection
+      break;
+    default: break;
+  }
+  if (cache->id != focus_) base_valid_ = false;
+  dirty_ = true;
+}
+
+RelightSession::Composition RelightSession::composition_locked() {
+  Composition c;
+  c.scale = environment_scale_;
+  c.final = final_;
+  c.rebuild_base = !base_valid_ && !final_;
+  if (!final_) base_valid_ = true;
+  c.edit = edit_;
+  bool all_refined = true;
+  for (const auto& cache : lights_) {
+    // A light still to be shown where it is now is shown where it was at
+    // the edit that put it there (none: before the first edit).
+    if (cache->pending()) c.edit = std::min(c.edit, cache->direct_geometry == kNothing ? 0 : cache->direct_geometry);
+    if (!cache->light.enabled) continue;
+    all_refined &= cache->stage == Stage::soft;
+    Composition::Term term{cache, cache->light.emission()};
+    if (cache->id == focus_)
+      c.focus = term;
+    else
+      c.others.push_back(term);
+  }
+  c.quality = final_ ? FrameQuality::converged : all_refined ? FrameQuality::refining : FrameQuality::interactive;
+  dirty_ = false;
+  return c;
+}
+
+// Composes the frame outside the lock (only this thread writes the images
+// it reads) and publishes it.
+void RelightSession::compose_and_publish(std::unique_lock<std::mutex>& lock) {
+  Composition c = composition_locked();
+  std::shared_ptr<Image> out;
+  for (const auto& buffer : frame_buffers_)
+    if (buffer.use_count() == 1) out = buffer;  // nobody holds it any more
+  if (!out && !c.final) {
+    out = std::make_shared<Image>(view_->width(), view_->height());
+    if (frame_buffers_.size() < 3) frame_buffers_.push_back(out);
+  }
+  lock.unlock();
+
+  if (!c.final) {
+    const RelitLayers& layers = view_->layers();
+    const int w = view_->width(), h = view_->height();
+    const auto term = [](const Image& image, size_t i) { return image.empty() ? Vec3::Zero() : image.pixels[i]; };
+    if (c.rebuild_base) {
+      // Everything but the focus light's direct light.
+      if (base_.width != w || base_.height != h) base_ = Image(w, h);
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, base_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          Vec3 light = c.scale * term(environment_, i);
+          for (const auto& t : c.others)
+            light += t.emission.cwiseProduct(term(t.light->direct, i) + term(t.light->bounce, i));
+          if (c.focus) light += c.focus->emission.cwiseProduct(term(c.focus->light->bounce, i));
+          base_.pixels[i] = layers.albedo_coverage.pixels[i].cwiseProduct(light) + c.scale * layers.background.pixels[i];
+        }
+      });
+    }
+    const Image* focus_direct = c.focus && !c.focus->light->direct.empty() ? &c.focus->light->direct : nullptr;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, base_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i)
+        out->pixels[i] = focus_direct ? Vec3(base_.pixels[i] + layers.albedo_coverage.pixels[i].cwiseProduct(
+                                                                   c.focus->emission.cwiseProduct(focus_direct->pixels[i])))
+                                      : base_.pixels[i];
+    });
+  }
+
+  lock.lock();
+  frame_.image = c.final ? c.final : std::shared_ptr<const Image>(out);
+  frame_.edit = c.edit;
+  frame_.quality = c.quality;
+  frame_changed_.notify_all();
+}
+
+void RelightSession::run_worker() {
+  std::unique_lock lock(mutex_);
+  while (!stop_) {
+    auto wake_at = std::chrono::steady_clock::time_point::max();
+    std::unique_ptr<Job> job = next_job_locked(wake_at);
+    // A moved light is rendered before the frame is composed again: the frame
+    // would show nothing new without it.
+    if (dirty_ && (!job || job->kind != Job::Kind::interactive)) {
+      compose_and_publish(lock);
+      continue;
+    }
+    if (!job) {
+      if (wake_at == std::chrono::steady_clock::time_point::max())
+        work_changed_.wait(lock);
+      else
+        work_changed_.wait_until(lock, wake_at);
+      continue;
+    }
+    running_ = job.get();
+    lock.unlock();
+    run_job(*job);
+    lock.lock();
+    running_ = nullptr;
+    install_locked(*job);
+  }
+}
+
+}  // namespace relight

@@ -1,0 +1,141 @@
+// RelightSession: the interactive relighting engine. It holds an analysis
+// and a rig and keeps, per light, its direct light (and interreflection) for
+// unit emission — light transport is linear — so that a frame is
+//
+//   albedo_coverage x (sum of emission_l x (direct_l + bounce_l)
+//                      + environment_scale x environment) + scale x background
+//
+// and an edit re-renders only the light it changes: moving a light costs one
+// fast render of that light (one sample per pixel, CPU shadow rays or OpenGL
+// shadow maps), recolouring, re-powering or switching it costs no ray. Once
+// no edit has come for a moment the view refines on a worker thread — all
+// sub-pixel samples, more light samples for soft lights, the environment,
+// each light's interreflection — and last runs the render of
+// `relight render` (render_rig), so it converges to exactly that image.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "realtime/shadow_maps.h"
+#include "relight/view.h"
+
+namespace relight {
+
+enum class Backend { cpu, gl };
+const char* to_string(Backend backend);
+
+struct SessionOptions {
+  Backend backend = Backend::cpu;
+  int width = 0, height = 0;     // the view; 0: the photo's size (then it converges to render_rig's image)
+  int soft_light_samples = 64;   // per pixel, refining the direct light of lights with an extent
+  int bounce_paths = 16;         // per pixel, each light's interreflection and the environment before the final render
+  RenderOptions final_render;    // the last refinement: `relight render`'s render (its --spp and --bounces)
+  std::chrono::milliseconds settle{150};  // refinement starts once no edit came for this long
+  ShadowMapOptions shadow_maps;  // the OpenGL backend's
+};
+
+// How far a frame has got.
+enum class FrameQuality {
+  interactive,  // some light shown at one sample per pixel (moving, or not refined yet)
+  refining,     // every light refined; interreflection or the final render still to come
+  converged,    // the final render: exactly render_rig's image (at the photo's size)
+};
+const char* to_string(FrameQuality quality);
+
+struct Frame {
+  std::shared_ptr<const Image> image;  // linear RGB, the view's size; null before the first frame
+  uint64_t edit = 0;                   // every edit up to this one is in the image (1: the starting rig)
+  FrameQuality quality = FrameQuality::interactive;
+};
+
+// What the worker has done, to check that an edit costs what it should.
+struct SessionStats {
+  uint64_t interactive_renders = 0;  // one light at one sample per pixel (a light moved or was added)
+  uint64_t refinements = 0;          // finished refinement renders, the final one included
+  uint64_t cancelled = 0;            // refinements given up because an edit made them stale
+};
+
+class RelightSession {
+ public:
+  // Starts the worker. Holds references to scene, rays, photo_gbuffer (the
+  // analysis's G-buffer) and analysis: they must outlive the session. Falls
+  // back to the CPU backend where OpenGL cannot be opened (backend_note()
+  // says why).
+  RelightSession(const Scene& scene, const RayScene& rays, const GBuffer& photo_gbuffer, const Analysis& analysis,
+                 const Rig& rig, const SessionOptions& options = {});
+  ~RelightSession();
+  RelightSession(const RelightSession&) = delete;
+  RelightSession& operator=(const RelightSession&) = delete;
+
+  Backend backend() const { return backend_; }
+  const std::string& backend_note() const { return backend_note_; }
+  const RelightView& view() const { return *view_; }
+
+  // Edits return at once with the edit's number; the worker renders them.
+  uint64_t add_light(const Light& light);
+  // Moves, re-shapes, recolours, re-powers, enables or disables light `index`.
+  uint64_t set_light(size_t index, const Light& light);
+  uint64_t remove_light(size_t index);
+  uint64_t set_environment_scale(float scale);
+  Rig rig() const;
+  uint64_t last_edit() const;
+  SessionStats stats() const;
+
+  // The newest frame (never blocks on rendering).
+  Frame frame() const;
+  // Blocks until a frame shows edit `edit` (or a later one).
+  Frame wait_for_edit(uint64_t edit);
+  // Blocks until the frame of the last edit has converged.
+  Frame wait_until_converged();
+
+ private:
+  struct LightCache;
+  struct Job;
+  struct Composition;
+  void run_worker();
+  std::unique_ptr<Job> next_job_locked(std::chrono::steady_clock::time_point& wake_at);
+  void run_job(Job& job);
+  void install_locked(Job& job);
+  Composition composition_locked();
+  void compose_and_publish(std::unique_lock<std::mutex>& lock);
+  std::shared_ptr<LightCache> find_light_locked(uint64_t id) const;
+  uint64_t edited_locked(uint64_t light_id, bool geometry);
+
+  const Scene& scene_;
+  const RayScene& rays_;
+  const Analysis& analysis_;
+  SessionOptions options_;
+  NewIllumination illumination_;
+  std::unique_ptr<RelightView> view_;
+  std::unique_ptr<DirectLightBackend> fast_;
+  Backend backend_ = Backend::cpu;
+  std::string backend_note_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable work_changed_, frame_changed_;
+  float environment_scale_ = 1.0f;
+  std::vector<std::shared_ptr<LightCache>> lights_;
+  uint64_t next_light_id_ = 1;
+  uint64_t focus_ = 0;                  // the light moved last: kept out of base_, so moving it costs one pass
+  Image base_;                          // the frame without the focus light's direct light
+  bool base_valid_ = false;
+  std::vector<std::shared_ptr<Image>> frame_buffers_;
+  uint64_t edit_ = 1;                   // edit 1: the rig the session started with
+  std::chrono::steady_clock::time_point last_edit_time_;
+  Image environment_;                   // environment + its interreflection at scale 1; empty until rendered
+  std::shared_ptr<const Image> final_;  // the final render of the current state, if done
+  Frame frame_;
+  SessionStats stats_;
+  bool dirty_ = true;                   // the frame must be composed again
+  Job* running_ = nullptr;              // the job on the worker, if any
+  bool stop_ = false;
+  std::thread worker_;
+};
+
+}  // namespace relight

@@ -1,0 +1,39 @@
+// RelightView: the image the interactive engine shows, at any size — the
+// scene's camera re-made for W x H, its G-buffer (the analysis's own at the
+// photo's size), one surface per pixel for the fast backends, and the
+// analysis's layers (albedo, background) at that size.
+#pragma once
+
+#include <memory>
+
+#include "relight/render_rig.h"
+#include "render/direct_light.h"
+
+namespace relight {
+
+class RelightView {
+ public:
+  // width/height 0: the photo's size, where the view is exactly the
+  // analysis's (photo_gbuffer and its layers). Other sizes look each surface
+  // point's albedo up in the photo (as bounce light does) and the background
+  // in the photo or, outside it, in the environment.
+  RelightView(const Scene& scene, const RayScene& rays, const GBuffer& photo_gbuffer, const Analysis& analysis,
+              const Environment& environment, int width = 0, int height = 0);
+
+  int width() const { return camera_.width(); }
+  int height() const { return camera_.height(); }
+  bool is_photo_size() const { return !owned_gbuffer_; }
+  const Camera& camera() const { return camera_; }
+  const GBuffer& gbuffer() const { return *gbuffer_; }
+  const PixelSurfaces& surfaces() const { return surfaces_; }
+  const RelitLayers& layers() const { return layers_; }
+
+ private:
+  Camera camera_;
+  std::unique_ptr<GBuffer> owned_gbuffer_;
+  const GBuffer* gbuffer_;
+  PixelSurfaces surfaces_;
+  RelitLayers layers_;
+};
+
+}  // namespace relight

@@ -1,0 +1,129 @@
+#include "render/direct_light.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <optional>
+
+#include "core/sampling.h"
+
+namespace relight {
+
+PixelSurfaces PixelSurfaces::central_samples(const GBuffer& gbuffer) {
+  PixelSurfaces s;
+  s.width = gbuffer.width();
+  s.height = gbuffer.height();
+  s.surface.resize(size_t(s.width) * s.height);
+  s.hit.resize(s.surface.size());
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const GBufferSample& g = gbuffer.central(x, y);
+      const size_t i = size_t(y) * s.width + x;
+      s.surface[i] = g.surface;
+      s.hit[i] = g.hit;
+    }
+  return s;
+}
+
+Light unit_light(const Light& light) {
+  Light unit = light;
+  unit.color = Vec3::Ones();
+  unit.power = 1.0f;
+  unit.irradiance = 1.0f;
+  unit.enabled = true;
+  return unit;
+}
+
+namespace {
+
+// Per-thread buffers of one row's shadow rays.
+struct RowRays {
+  std::vector<ShadowRay> rays;
+  std::vector<Vec3> irradiance;  // unoccluded, of each ray's light sample
+  std::vector<int> column;       // the pixel each ray belongs to
+  std::vector<uint8_t> blocked;
+  std::vector<int> samples;      // per pixel: surface samples x light samples
+  std::vector<Vec3> sum;
+};
+
+// surface_at(pixel, k): the pixel's k-th surface sample, nullptr where it
+// sees the background. A row's rays go to Embree together, as packets of
+// neighbouring pixels.
+template <class SurfaceAt>
+bool trace_direct_light(int width, int height, int samples_per_pixel, const SurfaceAt& surface_at,
+                        const RayScene& scene, const Light& light, const DirectLightSettings& settings, Image& out,
+                        const std::atomic<bool>* cancel) {
+  if (out.width != width || out.height != height) out = Image(width, height);
+  const LightSampler sampler(light);
+  // A light without extent gives the same sample whatever the random numbers.
+  const bool random = sampler.needs_random();
+  const int light_samples = random ? std::max(1, settings.light_samples) : 1;
+  std::atomic<bool> stopped{false};
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+    thread_local RowRays row;
+    for (int y = rows.begin(); y != rows.end(); ++y) {
+      if (cancel && cancel->load(std::memory_order_relaxed)) {
+        stopped = true;
+        return;
+      }
+      row.rays.clear();
+      row.irradiance.clear();
+      row.column.clear();
+      row.samples.assign(width, 0);
+      row.sum.assign(width, Vec3::Zero());
+      for (int x = 0; x < width; ++x) {
+        const size_t pixel = size_t(y) * width + x;
+        std::optional<Rng> rng;
+        if (random) rng.emplace(settings.seed, pixel, settings.pass);
+        for (int k = 0; k < samples_per_pixel; ++k) {
+          const SurfacePoint* p = surface_at(pixel, k);
+          if (!p) continue;
+          for (int j = 0; j < light_samples; ++j) {
+            ++row.samples[x];
+            const Vec2 u = random ? rng->uniform2() : Vec2(0.5f, 0.5f);
+            const LightSample s = sampler.sample(p->position, p->normal, u);
+            if (s.irradiance.isZero() || s.direction.dot(p->geometric_normal) <= 0.0f) continue;
+            row.rays.push_back(scene.shadow_ray(*p, s.direction, s.distance));
+            row.irradiance.push_back(s.irradiance);
+            row.column.push_back(x);
+          }
+        }
+      }
+      row.blocked.resize(row.rays.size());
+      scene.occluded(row.rays, row.blocked);
+      for (size_t i = 0; i < row.rays.size(); ++i)
+        if (!row.blocked[i]) row.sum[row.column[i]] += row.irradiance[i];
+      for (int x = 0; x < width; ++x)
+        out.at(x, y) = row.samples[x] ? Vec3(row.sum[x] * (kInvPi / float(row.samples[x]))) : Vec3::Zero();
+    }
+  });
+  return !stopped;
+}
+
+}  // namespace
+
+bool render_direct_light(const PixelSurfaces& surfaces, const RayScene& rays, const Light& light,
+                         const DirectLightSettings& settings, Image& out, const std::atomic<bool>* cancel) {
+  const auto surface_at = [&](size_t pixel, int) -> const SurfacePoint* {
+    return surfaces.hit[pixel] ? &surfaces.surface[pixel] : nullptr;
+  };
+  return trace_direct_light(surfaces.width, surfaces.height, 1, surface_at, rays, light, settings, out, cancel);
+}
+
+bool render_direct_light(const GBuffer& gbuffer, const RayScene& rays, const Light& light,
+                         const DirectLightSettings& settings, Image& out, const std::atomic<bool>* cancel) {
+  const int w = gbuffer.width(), spp = gbuffer.samples_per_pixel();
+  const auto surface_at = [&](size_t pixel, int k) -> const SurfacePoint* {
+    const GBufferSample& s = gbuffer.sample(int(pixel % w), int(pixel / w), k);
+    return s.hit ? &s.surface : nullptr;
+  };
+  return trace_direct_light(w, gbuffer.height(), spp, surface_at, rays, light, settings, out, cancel);
+}
+
+void CpuDirectLight::render(const Light& light, Image& out) {
+  DirectLightSettings settings;
+  settings.seed = seed_;
+  render_direct_light(surfaces_, rays_, light, settings, out);
+}
+
+}  // namespace relight

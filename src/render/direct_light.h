@@ -1,0 +1,73 @@
+// Direct light of one light over the pixels of a G-buffer, with shadow rays
+// traced in coherent packets: the CPU backend of the interactive engine. One
+// sample per pixel (the G-buffer's central samples) while a light moves; all
+// of a pixel's G-buffer samples and several light samples each to refine.
+#pragma once
+
+#include <atomic>
+#include <vector>
+
+#include "core/image.h"
+#include "render/gbuffer.h"
+#include "scene/light.h"
+
+namespace relight {
+
+// The surface each pixel sees through its central G-buffer sample, packed
+// row by row (the interactive view's one-sample-per-pixel G-buffer).
+struct PixelSurfaces {
+  int width = 0, height = 0;
+  std::vector<SurfacePoint> surface;  // valid where hit
+  std::vector<uint8_t> hit;
+
+  static PixelSurfaces central_samples(const GBuffer& gbuffer);
+};
+
+struct DirectLightSettings {
+  int light_samples = 1;  // per surface sample
+  uint64_t seed = 1;
+  uint64_t pass = 0;      // a different pass draws different light samples
+};
+
+// The light `light` sends straight to each pixel's surface, as the radiance a
+// white diffuse surface there reflects (irradiance / pi, the integrator's
+// direct part): the mean over the pixel's surface samples, 0 where none.
+// Returns false, leaving `out` incomplete, when *cancel becomes true.
+bool render_direct_light(const PixelSurfaces& surfaces, const RayScene& rays, const Light& light,
+                         const DirectLightSettings& settings, Image& out, const std::atomic<bool>* cancel = nullptr);
+bool render_direct_light(const GBuffer& gbuffer, const RayScene& rays, const Light& light,
+                         const DirectLightSettings& settings, Image& out, const std::atomic<bool>* cancel = nullptr);
+
+// A renderer of one light's direct light over a view's pixels, one surface
+// sample per pixel, fast enough to follow a light while it moves: the
+// interactive engine's backends (shadow rays here, OpenGL shadow maps in
+// src/realtime).
+class DirectLightBackend {
+ public:
+  virtual ~DirectLightBackend() = default;
+  virtual const char* name() const = 0;
+  // As render_direct_light: irradiance / pi of `light` at each pixel.
+  virtual void render(const Light& light, Image& out) = 0;
+};
+
+// The CPU backend: one shadow ray per pixel (one light sample).
+class CpuDirectLight final : public DirectLightBackend {
+ public:
+  // Holds references to both.
+  CpuDirectLight(const PixelSurfaces& surfaces, const RayScene& rays, uint64_t seed = 1)
+      : surfaces_(surfaces), rays_(rays), seed_(seed) {}
+  const char* name() const override { return "cpu"; }
+  void render(const Light& light, Image& out) override;
+
+ private:
+  const PixelSurfaces& surfaces_;
+  const RayScene& rays_;
+  uint64_t seed_;
+};
+
+// The light with white colour and unit power (or irradiance): its direct
+// light scales linearly with emission, so one render serves every colour and
+// power.
+Light unit_light(const Light& light);
+
+}  // namespace relight

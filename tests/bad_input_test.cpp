@@ -1,0 +1,309 @@
+// The bad-input catalogue: malformed files of every kind a person or another
+// tool can hand relight, each run through the real command line
+// (relight::cli::run) in a fresh copy of a small valid scene. Every bad input
+// must end with exit status 2, exactly one error line on stderr naming the
+// file and the problem, and no output written. A few rows are odd but valid
+// input (docs/reliability.md says which and why): they must work, with a
+// warning where something was dropped or changed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "scene_folder.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using relight::Image;
+using relight::Vec3;
+using relight::test::kGeometry;
+using relight::test::read_text;
+using relight::test::run_cli;
+using relight::test::SceneFolder;
+using relight::test::write_text;
+
+Image photo_with(int x, int y, float value) {
+  Image img(8, 6, Vec3(0.3f, 0.25f, 0.2f));
+  img.at(x, y).y() = value;
+  return img;
+}
+
+// Overwrites the data window (and display window) in an EXR header: the image
+// then claims (xmax+1) x (ymax+1) pixels whatever the file holds. Zeros are
+// appended where the chunk offsets of that many rows would be (16 rows a
+// chunk with zip), so that OpenEXR can read its header and open the file.
+void forge_exr_size(const fs::path& path, int32_t xmax, int32_t ymax) {
+  std::string bytes = read_text(path);
+  for (const std::string attribute : {"dataWindow", "displayWindow"}) {
+    const std::string key = attribute + std::string("\0box2i\0", 7);
+    const size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos) << attribute;
+    const int32_t box[4] = {0, 0, xmax, ymax};
+    std::memcpy(&bytes[at + key.size() + 4], box, sizeof box);  // after the 4-byte attribute size
+  }
+  write_text(path, bytes + std::string(size_t(std::max(0, ymax + 16) / 16) * 8, '\0'));
+}
+
+enum class Command { load, analyze, render };
+
+struct Row {
+  const char* name;
+  std::function<void(SceneFolder&)> make;  // breaks one thing in the valid scene
+  Command command;
+  const char* file;     // the file the message must name
+  const char* problem;  // what the error (or, for accepted rows, the warning) must say
+  int status = 2;
+  std::vector<std::string> extra_args = {};
+  const char* scene_file = "scene.json";  // the scene.json the command is given
+};
+
+json& light(SceneFolder& f) { return f.scene["lights"][0]; }
+
+json spot() {
+  return {{"type", "spot"}, {"position", {0, 0, 3}}, {"direction", {0, 0, -1}}, {"power", 100}, {"spot_angle_deg", 40}};
+}
+json area() {
+  return {{"type", "area"}, {"position", {0, 0, 3}}, {"direction", {0, 0, -1}}, {"up", {0, 1, 0}},
+          {"size", {1, 1}}, {"power", 100}};
+}
+json sun() { return {{"type", "directional"}, {"direction", {0, 0.3, -1}}, {"irradiance", 3}}; }
+
+const std::vector<Row>& catalogue() {
+  static const std::vector<Row> rows = {
+      // scene.json as a file
+      {"SceneMissing", [](SceneFolder&) {}, Command::load, "no_such_scene.json", "file not found", 2,
+       {}, "no_such_scene.json"},
+      {"SceneIsAFolder", [](SceneFolder& f) { fs::create_directory(f / "folder.json"); }, Command::load,
+       "folder.json", "is a folder", 2, {}, "folder.json"},
+      {"SceneEmpty", [](SceneFolder& f) { f.scene_text = ""; }, Command::load, "scene.json", "malformed JSON"},
+      {"SceneTruncated", [](SceneFolder& f) { f.scene_text = f.scene.dump(2).substr(0, 60); }, Command::load,
+       "scene.json", "malformed JSON"},
+      {"SceneIsAnArray", [](SceneFolder& f) { f.scene = json::array({1, 2, 3}); }, Command::load, "scene.json",
+       "expected an object"},
+      // wrong types and values
+      {"FormatIsANumber", [](SceneFolder& f) { f.scene["format"] = 1; }, Command::load, "scene.json",
+       "/format: expected a string"},
+      {"FormatOfARig", [](SceneFolder& f) { f.scene["format"] = "relight-rig/1"; }, Command::load, "scene.json",
+       "/format: expected \"relight-scene/1\""},
+      {"PhotoKeyMissing", [](SceneFolder& f) { f.scene.erase("photo"); }, Command::load, "scene.json",
+       "/photo: missing required key"},
+      {"PhotoIsANumber", [](SceneFolder& f) { f.scene["photo"] = 42; }, Command::load, "scene.json",
+       "/photo: expected a string"},
+      {"CameraIsAnArray", [](SceneFolder& f) { f.scene["camera"] = json::array({1, 2, 3}); }, Command::load,
+       "scene.json", "/camera: expected an object"},
+      {"CameraPositionHoldsAString", [](SceneFolder& f) { f.scene["camera"]["position"][1] = "-5"; }, Command::load,
+       "scene.json", "/camera/position/1: expected a number, found string"},
+      {"CameraPositionOfTwoNumbers", [](SceneFolder& f) { f.scene["camera"]["position"] = {0, -5}; }, Command::load,
+       "scene.json", "/camera/position: expected an array of 3 numbers"},
+      {"CameraPositionHuge", [](SceneFolder& f) { f.scene["camera"]["position"][0] = 1e30; }, Command::load,
+       "scene.json", "/camera/position/0: expected a number in"},
+      {"VfovOverflowsADouble", [](SceneFolder& f) { f.replace_in_scene_text("\"vfov_deg\": 40", "\"vfov_deg\": 1e400"); },
+       Command::load, "scene.json", "the number 1e400 is out of range"},
+      {"VfovZero", [](SceneFolder& f) { f.scene["camera"]["vfov_deg"] = 0; }, Command::load, "scene.json",
+       "/camera/vfov_deg: expected a field of view"},
+      {"CameraLooksAtItself", [](SceneFolder& f) { f.scene["camera"]["look_at"] = f.scene["camera"]["position"]; },
+       Command::load, "scene.json", "/camera/look_at: must differ from the camera position"},
+      {"CameraUpAlongTheView", [](SceneFolder& f) { f.scene["camera"]["up"] = {0, 5, -1.5}; }, Command::load,
+       "scene.json", "/camera/up: must not be parallel"},
+      {"CameraUpZero", [](SceneFolder& f) { f.scene["camera"]["up"] = {0, 0, 0}; }, Command::load, "scene.json",
+       "/camera/up: expected a non-zero direction"},
+      {"BackgroundIsAWord", [](SceneFolder& f) { f.scene["background"] = "blue"; }, Command::load, "scene.json",
+       "/background: expected a colour"},
+      // lights
+      {"LightsNotAnArray", [](SceneFolder& f) { f.scene["lights"] = json::object(); }, Command::load, "scene.json",
+       "/lights: expected an array"},
+      {"LightOfUnknownType", [](SceneFolder& f) { light(f)["type"] = "laser"; }, Command::load, "scene.json",
+       "/lights/0/type: expected \"point\""},
+      {"LightPowerZero", [](SceneFolder& f) { light(f)["power"] = 0; }, Command::load, "scene.json",
+       "/lights/0/power: expected a number greater than 0"},
+      {"LightPowerNegative", [](SceneFolder& f) { light(f)["power"] = -100; }, Command::load, "scene.json",
+       "/lights/0/power: expected a number greater than 0"},
+      {"LightPowerHuge", [](SceneFolder& f) { light(f)["power"] = 1e15; }, Command::load, "scene.json",
+       "/lights/0/power: power is implausibly large"},
+      {"LightPowerAsAString", [](SceneFolder& f) { light(f)["power"] = "200 W"; }, Command::load, "scene.json",
+       "/lights/0/power: expected a number, found string"},
+      {"SpotDirectionZero", [](SceneFolder& f) { f.scene["lights"][0] = spot(); light(f)["direction"] = {0, 0, 0}; },
+       Command::load, "scene.json", "/lights/0/direction: expected a non-zero direction"},
+      {"SpotAngleZero", [](SceneFolder& f) { f.scene["lights"][0] = spot(); light(f)["spot_angle_deg"] = 0; },
+       Command::load, "scene.json", "/lights/0/spot_angle_deg"},
+      {"SunDirectionZero", [](SceneFolder& f) { f.scene["lights"][0] = sun(); light(f)["direction"] = {0, 0, 0}; },
+       Command::load, "scene.json", "/lights/0/direction: expected a non-zero direction"},
+      {"SunIrradianceNegative", [](SceneFolder& f) { f.scene["lights"][0] = sun(); light(f)["irradiance"] = -3; },
+       Command::load, "scene.json", "/lights/0/irradiance: expected a number greater than 0"},
+      {"AreaSizeNegative", [](SceneFolder& f) { f.scene["lights"][0] = area(); light(f)["size"] = {1, -1}; },
+       Command::load, "scene.json", "/lights/0/size/1: expected a number greater than 0"},
+      {"AreaUpAlongDirection", [](SceneFolder& f) { f.scene["lights"][0] = area(); light(f)["up"] = {0, 0, 2}; },
+       Command::load, "scene.json", "/lights/0/up: must not be parallel to direction"},
+      {"ColourBadHex", [](SceneFolder& f) { light(f)["color"] = "#ffd8a"; }, Command::load, "scene.json",
+       "/lights/0/color: expected a colour \"#rrggbb\""},
+      {"ColourNegative", [](SceneFolder& f) { light(f)["color"] = {1, -0.5, 1}; }, Command::load, "scene.json",
+       "/lights/0/color/1: expected a number in"},
+      // probes
+      {"ProbesNotAnArray", [](SceneFolder& f) { f.scene["probes"] = "probe.exr"; }, Command::load, "scene.json",
+       "/probes: expected an array"},
+      {"ProbeMappingUnknown", [](SceneFolder& f) { f.add_probe("cubemap", 8, 4); }, Command::load, "scene.json",
+       "/probes/0/mapping: expected \"equirect\" or \"mirrorball\""},
+      {"ProbeForwardAlongUp", [](SceneFolder& f) { f.add_probe("equirect", 8, 4); f.scene["probes"][0]["up"] = {0, 2, 0}; },
+       Command::load, "scene.json", "/probes/0/up: must not be parallel to forward"},
+      {"ProbeEquirectSquare", [](SceneFolder& f) { f.add_probe("equirect", 8, 8); }, Command::load, "probe.exr",
+       "an equirect probe must be twice as wide as high, found 8x8"},
+      {"ProbeMirrorballNotSquare", [](SceneFolder& f) { f.add_probe("mirrorball", 8, 4); }, Command::load,
+       "probe.exr", "a mirror-ball probe must be square, found 8x4"},
+      {"ProbeImageMissing", [](SceneFolder& f) { f.add_probe("equirect", 8, 4); fs::remove(f / "probe.exr"); },
+       Command::load, "probe.exr", "file not found"},
+      // the photo
+      {"PhotoMissing", [](SceneFolder& f) { fs::remove(f / "photo.exr"); }, Command::load, "photo.exr",
+       "file not found"},
+      {"PhotoIsAFolder", [](SceneFolder& f) { f.scene["photo"] = "photos"; fs::create_directory(f / "photos"); },
+       Command::load, "photos", "is a folder, expected an image file"},
+      {"PhotoExrCutInTheHeader", [](SceneFolder& f) { fs::resize_file(f / "photo.exr", 200); }, Command::load,
+       "photo.exr", "Unexpected end of file"},
+      {"PhotoExrCutInThePixels",
+       [](SceneFolder& f) { fs::resize_file(f / "photo.exr", fs::file_size(f / "photo.exr") - 8); }, Command::load,
+       "photo.exr", "corrupt or truncated image"},
+      {"PhotoEmptyFile", [](SceneFolder& f) { write_text(f / "photo.exr", ""); }, Command::load, "photo.exr",
+       "not a readable image"},
+      {"PhotoOfTextBytes", [](SceneFolder& f) { write_text(f / "photo.exr", "this is not an image\n"); },
+       Command::load, "photo.exr", "not a readable image"},
+      {"PhotoClaims0x0", [](SceneFolder& f) { forge_exr_size(f / "photo.exr", -1, -1); }, Command::load,
+       "photo.exr", "not a readable image"},
+      {"PhotoClaims100000x100000", [](SceneFolder& f) { forge_exr_size(f / "photo.exr", 99999, 99999); },
+       Command::load, "photo.exr", "image of 100000x100000 (10000.0 Mpixel) is over the limit of 50.0 Mpixel"},
+      {"PhotoOverMaxPixels", [](SceneFolder&) {}, Command::load, "photo.exr",
+       "image of 8x6 (0.0 Mpixel) is over the limit", 2, {"--max-pixels", "40"}},
+      {"PhotoWithNaN", [](SceneFolder& f) { f.replace_photo(photo_with(3, 2, std::numeric_limits<float>::quiet_NaN())); },
+       Command::load, "photo.exr", "pixel (3, 2): holds a NaN or infinite value"},
+      {"PhotoWithInfinity", [](SceneFolder& f) { f.replace_photo(photo_with(0, 5, std::numeric_limits<float>::infinity())); },
+       Command::load, "photo.exr", "pixel (0, 5): holds a NaN or infinite value"},
+      {"PhotoWithNegativePixel", [](SceneFolder& f) { f.replace_photo(photo_with(7, 1, -0.5f)); }, Command::load,
+       "photo.exr", "pixel (7, 1): holds the negative value -0.5"},
+      // the geometry
+      {"GeometryMissing", [](SceneFolder& f) { fs::remove(f / "geometry.obj"); }, Command::load, "geometry.obj",
+       "file not found"},
+      {"GeometryIsAFolder", [](SceneFolder& f) { f.scene["geometry"] = "meshes"; fs::create_directory(f / "meshes"); },
+       Command::load, "meshes", "is a folder, expected a mesh file"},
+      {"MeshWithoutTriangles", [](SceneFolder& f) { write_text(f / "geometry.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"); },
+       Command::load, "geometry.obj", "the mesh has no triangles"},
+      {"MeshWithNaNVertex", [](SceneFolder& f) { write_text(f / "geometry.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"); },
+       Command::load, "geometry.obj", "has a NaN or infinite coordinate"},
+      {"MeshWithHugeVertex", [](SceneFolder& f) { write_text(f / "geometry.obj", "v 0 0 0\nv 1e20 0 0\nv 0 1 0\nf 1 2 3\n"); },
+       Command::load, "geometry.obj", "has a coordinate beyond 1e+07 m"},
+      {"MeshAllDegenerate",
+       [](SceneFolder& f) { write_text(f / "geometry.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 4\n"); },
+       Command::load, "geometry.obj", "every triangle of the mesh is degenerate"},
+      {"MeshOfBinaryJunk", [](SceneFolder& f) { f.scene["geometry"] = "geometry.ply"; write_text(f / "geometry.ply", "\x01\x02\xff\x7f junk"); },
+       Command::load, "geometry.ply", "not a readable mesh"},
+      {"PlyHeaderWithoutEnd",
+       [](SceneFolder& f) { f.scene["geometry"] = "geometry.ply"; write_text(f / "geometry.ply", "ply\nformat ascii 1.0\nelement vertex 3\n"); },
+       Command::load, "geometry.ply", "a PLY header without an end_header line"},
+      // the camera against the geometry
+      {"CameraLooksAway", [](SceneFolder& f) { f.scene["camera"]["look_at"] = {0, -10, 2}; }, Command::analyze,
+       "scene.json", "/camera: the camera sees no geometry"},
+      {"CameraInsideTheCube",
+       [](SceneFolder& f) { f.scene["camera"]["position"] = {0, 0, 0.5}; f.scene["camera"]["look_at"] = {0, 1, 0.5}; },
+       Command::analyze, "scene.json", "/camera: no light reaches any surface the camera sees"},
+      // rig.json (render reads it first)
+      {"RigMissing", [](SceneFolder& f) { f.rig = nullptr; }, Command::render, "rig.json", "file not found"},
+      {"RigOfASceneFormat", [](SceneFolder& f) { f.rig["format"] = "relight-scene/1"; }, Command::render, "rig.json",
+       "/format: expected \"relight-rig/1\""},
+      {"RigEnvironmentScaleNegative", [](SceneFolder& f) { f.rig["environment_scale"] = -1; }, Command::render,
+       "rig.json", "/environment_scale: expected a number in"},
+      {"RigLightsAString", [](SceneFolder& f) { f.rig["lights"] = "all"; }, Command::render, "rig.json",
+       "/lights: expected an array"},
+      {"RigSpotDirectionZero", [](SceneFolder& f) { f.rig["lights"][0]["direction"] = {0, 0, 0}; }, Command::render,
+       "rig.json", "/lights/0/direction: expected a non-zero direction"},
+      {"RigLightPowerNegative", [](SceneFolder& f) { f.rig["lights"][0]["power"] = -300; }, Command::render,
+       "rig.json", "/lights/0/power: expected a number greater than 0"},
+      // where the output goes
+      {"AnalysisFolderIsAFile", [](SceneFolder& f) { write_text(f / "analysis", "a file"); }, Command::analyze,
+       "analysis", "cannot create the output folder"},
+
+      // Odd but valid: these must work.
+      {"SomeTrianglesDegenerate", [](SceneFolder& f) { write_text(f / "geometry.obj", std::string(kGeometry) + "f 1 1 2\n"); },
+       Command::load, "geometry.obj", "dropped 1 degenerate (zero-area) triangles", 0},
+      {"NonManifoldFin", [](SceneFolder& f) { write_text(f / "geometry.obj", std::string(kGeometry) + "v 0 0 2\nf 11 12 13\n"); },
+       Command::load, "", "", 0},
+      {"NegativeNoiseInThePhoto", [](SceneFolder& f) { f.replace_photo(photo_with(7, 1, -1e-4f)); }, Command::load,
+       "photo.exr", "negative pixel values (noise down to -0.0001) clamped to 0", 0},
+      {"UnknownKey", [](SceneFolder& f) { f.scene["exposure"] = 2; }, Command::load, "scene.json",
+       "/exposure: unknown key ignored", 0},
+  };
+  return rows;
+}
+
+// The lines of stderr that are not blank and not warnings.
+std::vector<std::string> error_lines(const std::string& err) {
+  std::vector<std::string> lines;
+  std::istringstream in(err);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line.rfind("relight: warning:", 0) != 0) lines.push_back(line);
+  return lines;
+}
+
+void PrintTo(const Row& row, std::ostream* out) { *out << row.name; }
+
+class BadInput : public testing::TestWithParam<Row> {};
+
+TEST_P(BadInput, ExitsWithOneLineNamingTheFileAndTheProblem) {
+  const Row& row = GetParam();
+  SceneFolder f(row.name);
+  row.make(f);
+  f.write_json();
+
+  const std::string scene = (f / row.scene_file).string();
+  std::vector<std::string> args;
+  fs::path output;
+  switch (row.command) {
+    case Command::load:
+      output = f / "out_rig.json";
+      args.insert(args.end(), {"rig", scene, "-o", output.string()});
+      break;
+    case Command::analyze:
+      output = f / "analysis" / "analysis.json";
+      args.insert(args.end(), {"analyze", scene, "-o", (f / "analysis").string(), "--spp", "1"});
+      break;
+    case Command::render:
+      output = f / "relit.exr";
+      args.insert(args.end(), {"render", scene, "--rig", (f / "rig.json").string(), "-o", output.string(), "--spp", "1"});
+      break;
+  }
+  args.insert(args.end(), row.extra_args.begin(), row.extra_args.end());
+
+  const auto [status, err] = run_cli(args);
+  EXPECT_EQ(status, row.status) << err;
+  const std::vector<std::string> errors = error_lines(err);
+  if (row.status == 2) {
+    ASSERT_EQ(errors.size(), 1u) << "expected one error line, stderr was:\n" << err;
+    EXPECT_EQ(errors[0].rfind("relight: error: ", 0), 0u) << errors[0];
+    EXPECT_NE(errors[0].find(row.file), std::string::npos) << "the error does not name " << row.file << ": " << errors[0];
+    EXPECT_NE(errors[0].find(row.problem), std::string::npos) << "the error does not say \"" << row.problem
+                                                               << "\": " << errors[0];
+    EXPECT_FALSE(fs::exists(output)) << "bad input must not write " << output;
+  } else {
+    EXPECT_TRUE(errors.empty()) << err;
+    EXPECT_TRUE(fs::exists(output)) << output;
+    if (*row.problem) {
+      EXPECT_NE(err.find(row.file), std::string::npos) << "the warning does not name " << row.file << ": " << err;
+      EXPECT_NE(err.find(row.problem), std::string::npos) << "no warning \"" << row.problem << "\": " << err;
+    } else {
+      EXPECT_EQ(err.find("warning"), std::string::npos) << "no warning expected: " << err;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalogue, BadInput, testing::ValuesIn(catalogue()),
+                         [](const testing::TestParamInfo<Row>& info) { return std::string(info.param.name); });
+
+TEST(BadInputCatalogue, HoldsAtLeastFortyRejectedInputs) {
+  const auto& rows = catalogue();
+  EXPECT_GE(std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.status == 2; }), 40);
+}
+
+}  // namespace

@@ -1,0 +1,11 @@
+# The interactive engine: the relighting session (caches, refinement, exact
+# convergence to render_rig) and the OpenGL backend against the CPU one on
+# the reference scenes (skipped without OpenGL or without the scenes).
+add_executable(session_test session_test.cpp)
+target_link_libraries(session_test PRIVATE relight_relight relight_example GTest::gtest_main)
+gtest_discover_tests(session_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+
+add_executable(realtime_test realtime_test.cpp)
+target_link_libraries(realtime_test PRIVATE relight_realtime relight_io GTest::gtest_main)
+target_compile_definitions(realtime_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+gtest_discover_tests(realtime_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900)

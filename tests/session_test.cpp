@@ -1,0 +1,249 @@
+// The interactive relighting session on the example room: it converges to
+// exactly render_rig's image, an edit re-renders only the light it changes
+// (a colour or power change none at all), stale work never reaches the
+// screen, other view sizes and the OpenGL backend give the same picture.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "io/image_io.h"
+
+#include "relight/session.h"
+#include "render/render_illumination.h"
+#include "room_scene.h"
+
+using namespace relight;
+
+namespace {
+
+struct Room {
+  Scene scene;
+  std::unique_ptr<RayScene> rays;
+  std::unique_ptr<GBuffer> gbuffer;
+  Analysis analysis;
+};
+
+// A small analysed room (its photo made by the path tracer with the known albedo).
+const Room& room() {
+  static const Room r = [] {
+    Room room;
+    room.scene = example::room_scene(120, 90);
+    room.scene.path = "room";
+    room.rays = std::make_unique<RayScene>(room.scene.mesh);
+    Lighting lighting;
+    lighting.lights = room.scene.lights;
+    lighting.environment = Environment::constant(room.scene.background);
+    const example::RoomAlbedo albedo = example::room_albedo();
+    const Integrator integrator(*room.rays, lighting, &albedo);
+    const GBuffer photo_samples(room.scene.camera, *room.rays, 4, 5, "room");
+    room.scene.photo =
+        synthesize_photo(photo_samples, room.scene.camera, integrator, albedo, 16, 3, Progress::silent());
+    AnalysisOptions options;
+    options.strategy = Strategy::lights;
+    options.paths_per_pixel = 8;
+    options.interreflection = false;
+    room.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(room.scene, *room.rays, options));
+    room.analysis = analyze(room.scene, *room.rays, *room.gbuffer, options, Progress::silent());
+    return room;
+  }();
+  return r;
+}
+
+// Cheap refinement, so that the tests converge in a second or two.
+SessionOptions quick_options() {
+  SessionOptions o;
+  o.soft_light_samples = 8;
+  o.bounce_paths = 4;
+  o.final_render.paths_per_pixel = 8;
+  o.final_render.max_bounces = 2;
+  o.settle = std::chrono::milliseconds(20);
+  return o;
+}
+
+Image offline_render(const Rig& rig, const SessionOptions& options) {
+  const Room& r = room();
+  return render_rig(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options.final_render, Progress::silent());
+}
+
+// Where to write images for a look (RELIGHT_TEST_IMAGES=folder), if anywhere.
+void keep_image(const std::string& name, const Image& image) {
+  if (const char* folder = std::getenv("RELIGHT_TEST_IMAGES")) {
+    std::filesystem::create_directories(folder);
+    write_png(std::filesystem::path(folder) / (name + ".png"), image);
+  }
+}
+
+float max_difference(const Image& a, const Image& b) {
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.height, b.height);
+  float d = 0.0f;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+    d = std::max(d, (a.pixels[i] - b.pixels[i]).cwiseAbs().maxCoeff());
+  return d;
+}
+
+Light moved(Light light, const Vec3& by) {
+  light.position += by;
+  return light;
+}
+
+TEST(Session, ConvergesToExactlyTheOfflineRender) {
+  const Room& r = room();
+  const SessionOptions options = quick_options();
+  Rig rig = example::evening_rig();
+  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  const Frame first = session.wait_until_converged();
+  EXPECT_EQ(first.quality, FrameQuality::converged);
+  EXPECT_EQ(max_difference(*first.image, offline_render(rig, options)), 0.0f);
+
+  rig.lights[0] = moved(rig.lights[0], Vec3(-0.5f, 0.2f, 0.1f));
+  session.set_light(0, rig.lights[0]);
+  const Frame second = session.wait_until_converged();
+  EXPECT_EQ(max_difference(*second.image, offline_render(rig, options)), 0.0f);
+  EXPECT_GT(max_difference(*first.image, *second.image), 0.01f);  // the lamp did move
+}
+
+TEST(Session, StaleRendersNeverReachTheFinalImage) {
+  const Room& r = room();
+  const SessionOptions options = quick_options();
+  Rig rig = example::evening_rig();
+  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  // A drag: moves in quick succession, while earlier ones are still rendering.
+  for (int i = 1; i <= 8; ++i) {
+    rig.lights[1] = moved(rig.lights[1], Vec3(0.05f, 0.0f, 0.0f));
+    session.set_light(1, rig.lights[1]);
+  }
+  const uint64_t last = session.set_environment_scale(0.5f);
+  rig.environment_scale = 0.5f;
+  const Frame frame = session.wait_until_converged();
+  EXPECT_EQ(frame.edit, last);
+  EXPECT_EQ(max_difference(*frame.image, offline_render(rig, options)), 0.0f);
+}
+
+// Light is linear: a frame is the albedo times the sum of each light's
+// cached image times its emission. Refinement is held back (settle) so the
+// caches stay as they are.
+TEST(Session, RecolouringAndRepoweringCastNoRay) {
+  const Room& r = room();
+  SessionOptions options = quick_options();
+  options.settle = std::chrono::hours(1);
+  Rig rig = example::evening_rig();
+  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  const Frame start = session.wait_for_edit(1);
+  const SessionStats stats = session.stats();
+  EXPECT_EQ(stats.interactive_renders, 2u);
+
+  Light lamp = rig.lights[0];
+  lamp.enabled = false;
+  const Frame off = session.wait_for_edit(session.set_light(0, lamp));
+  lamp.enabled = true;
+  lamp.power *= 3.0f;
+  lamp.color = rig.lights[0].color.cwiseProduct(Vec3(0.2f, 0.4f, 1.0f));
+  const Frame recoloured = session.wait_for_edit(session.set_light(0, lamp));
+  const Frame back = session.wait_for_edit(session.set_light(0, rig.lights[0]));
+  EXPECT_EQ(session.stats().interactive_renders, stats.interactive_renders);
+  EXPECT_EQ(session.stats().refinements, 0u);
+
+  // recoloured - off = 3 x (0.2, 0.4, 1) x (start - off), channel by channel.
+  const Vec3 factor = 3.0f * Vec3(0.2f, 0.4f, 1.0f);
+  double worst = 0.0, largest = 0.0;
+  for (size_t i = 0; i < start.image->size(); ++i) {
+    const Vec3 lamp_light = start.image->pixels[i] - off.image->pixels[i];
+    const Vec3 expected = lamp_light.cwiseProduct(factor);
+    const Vec3 got = recoloured.image->pixels[i] - off.image->pixels[i];
+    worst = std::max(worst, double((got - expected).cwiseAbs().maxCoeff()));
+    largest = std::max(largest, double(expected.cwiseAbs().maxCoeff()));
+  }
+  EXPECT_GT(largest, 0.05);
+  EXPECT_LT(worst, 1e-5 * largest + 1e-6);
+  EXPECT_EQ(max_difference(*back.image, *start.image), 0.0f);
+}
+
+TEST(Session, MovingOneLightRendersOnlyThatLight) {
+  const Room& r = room();
+  Rig rig = example::evening_rig();
+  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, quick_options());
+  session.wait_until_converged();
+  const SessionStats stats = session.stats();
+  const Frame frame = session.wait_for_edit(session.set_light(1, moved(rig.lights[1], Vec3(0.3f, 0.0f, 0.0f))));
+  EXPECT_EQ(session.stats().interactive_renders, stats.interactive_renders + 1);
+  EXPECT_TRUE(frame.image);
+}
+
+TEST(Session, AddsAndRemovesLights) {
+  const Room& r = room();
+  const SessionOptions options = quick_options();
+  Rig rig = example::evening_rig();
+  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  Light sun;
+  sun.type = LightType::directional;
+  sun.direction = Vec3(0.3f, 0.5f, -0.8f).normalized();
+  sun.irradiance = 2.0f;
+  session.add_light(sun);
+  session.remove_light(0);
+  rig.lights = {rig.lights[1], sun};
+  EXPECT_EQ(session.rig().lights.size(), 2u);
+  EXPECT_EQ(max_difference(*session.wait_until_converged().image, offline_render(rig, options)), 0.0f);
+}
+
+// A view twice the photo's size shows the same picture: averaged down 2x2
+// it matches the photo-size render.
+TEST(Session, AViewOfAnotherSizeShowsTheSamePicture) {
+  const Room& r = room();
+  SessionOptions options = quick_options();
+  options.width = 2 * r.scene.photo.width;
+  options.height = 2 * r.scene.photo.height;
+  const Rig rig = example::evening_rig();
+  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  const Image& big = *session.wait_until_converged().image;
+  ASSERT_EQ(big.width, options.width);
+  Image small(r.scene.photo.width, r.scene.photo.height);
+  for (int y = 0; y < small.height; ++y)
+    for (int x = 0; x < small.width; ++x)
+      small.at(x, y) = 0.25f * (big.at(2 * x, 2 * y) + big.at(2 * x + 1, 2 * y) + big.at(2 * x, 2 * y + 1) +
+                                big.at(2 * x + 1, 2 * y + 1));
+  const double db = psnr(tonemap_reinhard_srgb(small), tonemap_reinhard_srgb(offline_render(rig, options)));
+  std::printf("[ figures  ] room view at 2x the photo's size vs the photo-size render: PSNR %.2f dB\n", db);
+  EXPECT_GE(db, 30.0);
+}
+
+TEST(Session, FallsBackToTheCpuWithoutOpenGL) {
+  const Room& r = room();
+  SessionOptions options = quick_options();
+  options.backend = Backend::gl;
+  setenv("RELIGHT_GL", "off", 1);
+  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, example::evening_rig(), options);
+  unsetenv("RELIGHT_GL");
+  EXPECT_EQ(session.backend(), Backend::cpu);
+  EXPECT_NE(session.backend_note().find("OpenGL unavailable"), std::string::npos);
+  EXPECT_TRUE(session.wait_for_edit(1).image);
+}
+
+// The OpenGL backend's frames while a light moves look like the CPU
+// backend's, and the session still converges to the offline render.
+TEST(Session, OpenGLBackendShowsTheSameAndConvergesTheSame) {
+  const Room& r = room();
+  SessionOptions options = quick_options();
+  options.settle = std::chrono::hours(1);  // no refinement: compare the interactive frames
+  options.backend = Backend::gl;
+  const Rig rig = example::evening_rig();
+  RelightSession gl(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  if (gl.backend() != Backend::gl) GTEST_SKIP() << gl.backend_note();
+  options.backend = Backend::cpu;
+  RelightSession cpu(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  const Frame on_gl = gl.wait_for_edit(1), on_cpu = cpu.wait_for_edit(1);
+  EXPECT_EQ(on_gl.quality, FrameQuality::interactive);
+  keep_image("room_interactive_gl", *on_gl.image);
+  keep_image("room_interactive_cpu", *on_cpu.image);
+  const double db = psnr(tonemap_reinhard_srgb(*on_gl.image), tonemap_reinhard_srgb(*on_cpu.image));
+  std::printf("[ figures  ] room interactive frame, OpenGL vs CPU backend: PSNR %.2f dB\n", db);
+  EXPECT_GE(db, 30.0);
+
+  options.backend = Backend::gl;
+  options.settle = std::chrono::milliseconds(20);
+  RelightSession converging(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  EXPECT_EQ(max_difference(*converging.wait_until_converged().image, offline_render(rig, options)), 0.0f);
+}
+
+}  // namespace
