@@ -51,7 +51,7 @@ bool no_light_reaches_the_view(const Image& surface_illumination, const std::vec
 }  // namespace
 
 Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& options,
-                 Progress& progress) {
+                 Progress& progress, const AlbedoObserver& on_albedo) {
   check_strategy(scene, options.strategy);
   Analysis result;
   result.options = options;
@@ -70,6 +70,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
                      "light shut in?");
   result.albedo = recover_albedo(scene.photo, result.illumination, gbuffer);
   result.iterations = 1;
+  if (on_albedo) on_albedo(result.iterations, result.albedo);
 
   // The recovered albedo overshoots and undershoots in turn (too little
   // bounce light makes it too bright, which makes too much bounce light), so
@@ -87,6 +88,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     result.illumination = std::move(illum);
     result.albedo = std::move(next);
     ++result.iterations;
+    if (on_albedo) on_albedo(result.iterations, result.albedo);
     spdlog::info("interreflection pass {}: mean albedo change {:.4f}", it + 1, change);
     if (change < options.tolerance) break;
   }

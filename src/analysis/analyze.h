@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "analysis/albedo.h"
@@ -43,8 +44,12 @@ struct Analysis {
 // and sub-pixel samples: the same for the analysis and every later render.
 GBuffer scene_gbuffer(const Scene& scene, const RayScene& rays, const AnalysisOptions& options);
 
+// Called with the albedo each render recovers (render 1: white surfaces,
+// then one per interreflection pass), to follow the iteration.
+using AlbedoObserver = std::function<void(int render, const AlbedoImages& albedo)>;
+
 Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& options,
-                 Progress& progress);
+                 Progress& progress, const AlbedoObserver& on_albedo = {});
 
 // The analysis folder: illumination.exr, albedo.exr (coverage-weighted, like
 // albedo_gt.exr), albedo.png, mask.exr, and analysis.json with the options,

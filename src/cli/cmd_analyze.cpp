@@ -3,15 +3,21 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <vector>
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "io/image_io.h"
 
 namespace relight::cli {
+
+namespace fs = std::filesystem;
 
 void add_analyze_command(CLI::App& app, Action& action) {
   struct Args {
     std::string scene, out, strategy, interreflection = "on";
+    bool save_renders = false;
     AnalysisOptions options;
   };
   auto args = std::make_shared<Args>();
@@ -26,6 +32,9 @@ void add_analyze_command(CLI::App& app, Action& action) {
                   "on: iterate the albedo with coloured interreflection; off: white diffuse surfaces (the thesis)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  cmd->add_flag("--save-renders", args->save_renders,
+                "also write the albedo each render recovered, albedo_render1.exr (white surfaces), "
+                "albedo_render2.exr, ... (to follow the interreflection iteration)");
   add_sampling_options(*cmd, args->options);
   cmd->footer(
       "Example:\n  relight analyze examples/room/scene.json -o out/room\n"
@@ -37,8 +46,13 @@ void add_analyze_command(CLI::App& app, Action& action) {
       AnalysisOptions options = args->options;
       options.strategy = args->strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args->strategy);
       options.interreflection = args->interreflection == "on";
-      const Analysis analysis = analyze(s.scene, *s.rays, *s.gbuffer, options, progress);
+      std::vector<Image> renders;  // albedo_coverage of each render, with --save-renders
+      const auto keep = [&](int, const AlbedoImages& albedo) { renders.push_back(albedo.albedo_coverage); };
+      const Analysis analysis =
+          analyze(s.scene, *s.rays, *s.gbuffer, options, progress, args->save_renders ? AlbedoObserver(keep) : nullptr);
       save_analysis(args->out, analysis, s.scene);
+      for (size_t i = 0; i < renders.size(); ++i)
+        write_exr(fs::path(args->out) / ("albedo_render" + std::to_string(i + 1) + ".exr"), renders[i]);
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::printf("analysis (%s, %d spp, %d render%s) written to %s in %.1f s\n", to_string(options.strategy),
                   options.paths_per_pixel, analysis.iterations, analysis.iterations > 1 ? "s" : "", args->out.c_str(),
