@@ -73,6 +73,28 @@ TEST(Cli, AnalyseRigRenderGivesBackThePhoto) {
   EXPECT_GE(db, 40.0);
 }
 
+TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
+  const fs::path dir = temp_folder("renders");
+  ASSERT_EQ(relight_run({"analyze", (kRoom / "scene.json").string(), "-o", dir.string(), "--spp", "8",
+                         "--save-renders"}),
+            0);
+  std::ifstream json(dir / "analysis.json");
+  const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  const size_t at = text.find("\"iterations\":");
+  ASSERT_NE(at, std::string::npos);
+  const int renders = std::stoi(text.substr(at + 13));
+  ASSERT_GE(renders, 2);
+  for (int i = 1; i <= renders; ++i) EXPECT_TRUE(fs::exists(dir / ("albedo_render" + std::to_string(i) + ".exr"))) << i;
+  EXPECT_FALSE(fs::exists(dir / ("albedo_render" + std::to_string(renders + 1) + ".exr")));
+  // The last render's albedo is the analysis's; the white-diffuse first one
+  // is far worse on the room's coloured walls.
+  const relight::Image truth = relight::read_image(kRoom / "albedo_gt.exr");
+  const auto db = [&](const fs::path& f) { return relight::psnr(relight::clip01(relight::read_image(f)), truth); };
+  const fs::path last = dir / ("albedo_render" + std::to_string(renders) + ".exr");
+  EXPECT_NEAR(db(last), db(dir / "albedo.exr"), 0.01);
+  EXPECT_GT(db(last), db(dir / "albedo_render1.exr") + 5.0);
+}
+
 TEST(Cli, RenderRefusesAnAnalysisOfAnotherPhotoSize) {
   const fs::path dir = temp_folder("othersize");
   fs::create_directories(dir / "analysis");
