@@ -1,6 +1,9 @@
 // The interactive engine: frame time while dragging one light of four, for
 // each backend at 640x480 and 1280x720, and the time the view takes to
-// converge (to the render of `relight render`) once the light is let go.
+// converge (to the render of `relight render`) once the light is let go;
+// and one light's render by each backend alone. The CPU column is the
+// process's CPU time (all threads) per frame: on a busy machine, half of it
+// is about what a frame takes on two idle cores.
 // On the reference scene `bookcase` where ../shared/scenes holds it
 // (RELIGHT_SCENES overrides), else on the example room. Results and the
 // machine they ran on: docs/benchmarks.md, "Interactive relighting".
@@ -12,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/statistics.h"
 #include "io/scene_io.h"
 #include "relight/session.h"
 #include "room_scene.h"
@@ -121,11 +125,6 @@ RelightSession& session(Backend backend, int size) {
   return *s;
 }
 
-double percentile(std::vector<double> v, double share) {
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, size_t(std::ceil(share * double(v.size()))) - 1)];
-}
-
 // Light `index` one step further around a circle about where it started.
 Light dragged(int index, int step) {
   const Fixture& f = fixture();
@@ -166,7 +165,42 @@ void BM_DragOneLightOfFour(benchmark::State& state) {
 BENCHMARK(BM_DragOneLightOfFour)
     ->ArgsProduct({{0, 1}, {0, 1}, {0, 1}})
     ->Iterations(60)
+    ->MeasureProcessCPUTime()
     ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+// One light's interactive render by a backend alone, outside a session: how
+// much of a frame is the backend's (the rest is composing the frame and
+// handing it over). Real time and the process's CPU time (both cores).
+// Arguments as BM_DragOneLightOfFour's.
+void BM_BackendRender(benchmark::State& state) {
+  const int size = int(state.range(1)), index = int(state.range(2));
+  Fixture& f = fixture();
+  const NewIllumination illumination(f.scene, *f.rays, *f.gbuffer, f.analysis);
+  const RelightView view(f.scene, *f.rays, *f.gbuffer, f.analysis, illumination.environment(), kSizes[size][0],
+                         kSizes[size][1]);
+  std::unique_ptr<DirectLightBackend> backend;
+  if (state.range(0)) {
+    std::string why;
+    backend = GlRelighter::open(f.scene.mesh, view.surfaces(), view.layers().albedo_coverage, {}, why);
+    if (!backend) {
+      state.SkipWithError(("OpenGL unavailable: " + why).c_str());
+      return;
+    }
+  } else {
+    backend = std::make_unique<CpuDirectLight>(view.surfaces(), *f.rays);
+  }
+  Image out;
+  int step = 0;
+  for (auto _ : state) backend->render(unit_light(dragged(index, ++step)), out);
+  state.SetLabel(std::string(backend->name()) + " " + std::to_string(view.width()) + "x" +
+                 std::to_string(view.height()) + " " + f.rig.lights[size_t(index)].name);
+}
+BENCHMARK(BM_BackendRender)
+    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1}})
+    ->Iterations(30)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
 // From letting go of the dragged point light to the converged frame (the

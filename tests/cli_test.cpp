@@ -1,7 +1,7 @@
-// The command line as a user meets it: exit codes, one-line errors, and the
-// analyse -> rig -> render sequence on the example scene.
+// The command line as a user meets it: exit codes, one-line errors, the
+// analyse -> rig -> render sequence on the example scene, and preview's
+// frames and timing on a small scene.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <filesystem>
@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "io/image_io.h"
+#include "scene_folder.h"
 
 namespace fs = std::filesystem;
 
@@ -109,6 +110,78 @@ TEST(Cli, RenderRefusesAnAnalysisOfAnotherPhotoSize) {
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("another size"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir / "out.exr"));
+}
+
+// relight preview on the 8 x 6 test scene at 16 x 12, 5 steps of its rig's
+// spot around a circle: the first and last frames, and timing.json.
+struct Preview {
+  relight::test::CliResult result;
+  nlohmann::json timing;
+  relight::Image first, last;
+};
+
+Preview run_preview(const relight::test::SceneFolder& folder, const std::string& backend) {
+  const fs::path out = folder / ("preview_" + backend);
+  Preview p;
+  p.result = relight::test::run_cli({"preview", (folder / "scene.json").string(), "--rig",
+                                     (folder / "rig.json").string(), "--backend", backend, "--size", "16x12",
+                                     "--frames", "5", "--spp", "4", "-o", out.string()});
+  if (p.result.status != 0) return p;
+  for (int i = 1; i < 4; ++i) EXPECT_FALSE(fs::exists(out / ("frame_000" + std::to_string(i) + ".exr"))) << i;
+  p.timing = nlohmann::json::parse(relight::test::read_text(out / "timing.json"));
+  p.first = relight::read_image(out / "frame_0000.exr");
+  p.last = relight::read_image(out / "frame_0004.exr");
+  return p;
+}
+
+TEST(Cli, PreviewWritesTheFirstAndLastFramesAndTheirTiming) {
+  relight::test::SceneFolder folder("preview_cpu");
+  folder.write_json();
+  const Preview p = run_preview(folder, "cpu");
+  ASSERT_EQ(p.result.status, 0) << p.result.err;
+  EXPECT_EQ(p.timing["backend"], "cpu");
+  EXPECT_EQ(p.timing["width"], 16);
+  EXPECT_EQ(p.timing["height"], 12);
+  EXPECT_EQ(p.timing["frames"], 5);
+  const double median = p.timing["median_frame_ms"], p95 = p.timing["p95_frame_ms"];
+  EXPECT_GT(median, 0.0);
+  EXPECT_GE(p95, median);
+  EXPECT_GT(double(p.timing["converge_ms"]), 0.0);
+  ASSERT_EQ(p.first.width, 16);
+  ASSERT_EQ(p.first.height, 12);
+  ASSERT_EQ(p.last.width, 16);
+  // The spot moved between the first and the last frame.
+  float moved = 0.0f;
+  for (size_t i = 0; i < p.first.size(); ++i)
+    moved = std::max(moved, (p.first.pixels[i] - p.last.pixels[i]).cwiseAbs().maxCoeff());
+  EXPECT_GT(moved, 0.01f);
+}
+
+// The OpenGL backend's frames show what the CPU backend's show.
+TEST(Cli, PreviewOnOpenGLShowsWhatTheCpuShows) {
+  relight::test::SceneFolder folder("preview_gl");
+  folder.write_json();
+  const Preview gl = run_preview(folder, "gl");
+  ASSERT_EQ(gl.result.status, 0) << gl.result.err;
+  if (gl.timing["backend"] != "gl") GTEST_SKIP() << "OpenGL unavailable: preview used the CPU backend";
+  const Preview cpu = run_preview(folder, "cpu");
+  ASSERT_EQ(cpu.result.status, 0) << cpu.result.err;
+  for (const auto& [on_gl, on_cpu] : {std::pair{&gl.first, &cpu.first}, std::pair{&gl.last, &cpu.last}}) {
+    const double db = relight::psnr(relight::tonemap_reinhard_srgb(*on_gl), relight::tonemap_reinhard_srgb(*on_cpu));
+    std::printf("[ figures  ] preview frame, OpenGL vs CPU backend: %.2f dB\n", db);
+    EXPECT_GE(db, 30.0);
+  }
+}
+
+TEST(Cli, PreviewRefusesABadSize) {
+  relight::test::SceneFolder folder("preview_size");
+  folder.write_json();
+  const auto r =
+      relight::test::run_cli({"preview", (folder / "scene.json").string(), "--rig", (folder / "rig.json").string(),
+                              "--size", "16by12", "-o", (folder / "out").string()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("16by12"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -66,10 +66,7 @@ TEST_P(GlAgreesWithCpu, OnEveryRigOfTheScene) {
   const Image albedo = read_image(folder / "albedo_gt.exr");
 
   std::string why;
-  ShadowMapOptions sm;
-  if (const char* e = std::getenv("DBG_SM")) sm.size = std::atoi(e);
-  if (const char* e = std::getenv("DBG_CASC")) sm.sun_cascades = std::atoi(e);
-  const auto gl = GlRelighter::open(scene.mesh, surfaces, albedo, sm, why);
+  const auto gl = GlRelighter::open(scene.mesh, surfaces, albedo, ShadowMapOptions{}, why);
   if (!gl) GTEST_SKIP() << "OpenGL unavailable (" << why << "): the CPU backend is used instead";
 
   int rigs = 0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/sampling.h"
+#include "core/statistics.h"
 #include "scene/camera.h"
 
 namespace relight {
@@ -40,6 +41,15 @@ void expect_chi_square_ok(double x2, int dof) {
 }
 
 // ------------------------------------------------------------- Rng
+
+TEST(Percentile, IsTheValueThatShareOfTheValuesAreAtMost) {
+  const std::vector<double> frame_ms = {9.0, 1.0, 7.0, 3.0, 5.0, 2.0, 8.0, 4.0, 6.0, 10.0};
+  EXPECT_EQ(relight::percentile(frame_ms, 0.5), 5.0);
+  EXPECT_EQ(relight::percentile(frame_ms, 0.95), 10.0);
+  EXPECT_EQ(relight::percentile(frame_ms, 0.1), 1.0);
+  EXPECT_EQ(relight::percentile({42.0}, 0.95), 42.0);
+  EXPECT_THROW(relight::percentile({}, 0.5), std::invalid_argument);
+}
 
 TEST(Rng, SameSeedAndStreamGiveTheSameSequence) {
   Rng a(42, 7, 3), b(42, 7, 3);

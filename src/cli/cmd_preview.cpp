@@ -14,6 +14,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/statistics.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
@@ -46,16 +47,33 @@ Light turntable(const Light& start, const Vec3& up, float radius, int step, int 
   return light;
 }
 
-// The value below which `share` of the sorted values lie.
-double percentile(std::vector<double> values, double share) {
-  std::sort(values.begin(), values.end());
-  const size_t i = size_t(std::ceil(share * double(values.size()))) - 1;
-  return values[std::min(i, values.size() - 1)];
-}
-
 void write_frame(const fs::path& folder, const std::string& name, const Image& image) {
   write_exr(folder / (name + ".exr"), image);
   write_png(folder / (name + ".png"), image);
+}
+
+// The OpenGL backend's shadow maps (docs/algorithms.md, section 8).
+void add_shadow_map_options(CLI::App& cmd, ShadowMapOptions& o) {
+  cmd.add_option("--shadow-map-size", o.size,
+                 "gl: side of a spot's or area sample's shadow map (a point's cube faces: half)")
+      ->check(CLI::Range(16, 16384))
+      ->capture_default_str();
+  cmd.add_option("--sun-map-size", o.sun_size, "gl: side of each of the sun's cascaded shadow maps")
+      ->check(CLI::Range(16, 16384))
+      ->capture_default_str();
+  cmd.add_option("--shadow-normal-offset", o.normal_offset,
+                 "gl: shadow bias, texels the lookup moves off its surface along the normal")
+      ->check(CLI::Range(0.0f, 16.0f))
+      ->capture_default_str();
+  cmd.add_option("--shadow-depth-offset", o.depth_offset, "gl: shadow bias, texels the lookup moves towards the light")
+      ->check(CLI::Range(0.0f, 16.0f))
+      ->capture_default_str();
+  cmd.add_option("--shadow-pcf", o.pcf_radius, "gl: percentage-closer filter radius for soft lights, (2r+1)^2 taps")
+      ->check(CLI::Range(0, 4))
+      ->capture_default_str();
+  cmd.add_option("--shadow-samples", o.soft_samples, "gl: shadow maps per soft light (points over its extent)")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
 }
 
 }  // namespace
@@ -66,6 +84,7 @@ void add_preview_command(CLI::App& app, Action& action) {
     int frames = 60;
     float radius = 0.0f;
     AnalysisOptions options;
+    ShadowMapOptions shadow_maps;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
@@ -78,12 +97,15 @@ void add_preview_command(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"cpu", "gl"}))
       ->capture_default_str();
   cmd->add_option("--size", args->size, "view size WxH (default: the photo's; then it converges to 'relight render')");
-  cmd->add_option("--frames", args->frames, "steps around the circle")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--frames", args->frames, "steps around the circle")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   cmd->add_option("--radius", args->radius,
                   "circle radius in metres (default: a quarter of the light's distance to the camera's look_at)");
   cmd->add_option("--analysis", args->analysis,
                   "an analysis folder from 'relight analyze' to reuse (else the scene is analysed first)");
   add_sampling_options(*cmd, args->options);
+  add_shadow_map_options(*cmd, args->shadow_maps);
   cmd->footer(
       "Example:\n  relight analyze scene.json -o analysis\n"
       "  relight preview scene.json --rig rigs/evening.json --analysis analysis --size 1280x720 -o preview");
@@ -93,6 +115,7 @@ void add_preview_command(CLI::App& app, Action& action) {
       if (rig.lights.empty()) throw InputError(args->rig, "/lights", "preview moves the first light: the rig has none");
       SessionOptions options;
       options.backend = args->backend == "gl" ? Backend::gl : Backend::cpu;
+      options.shadow_maps = args->shadow_maps;
       if (!args->size.empty()) {
         std::smatch m;
         if (!std::regex_match(args->size, m, std::regex(R"((\d{1,5})x(\d{1,5}))")) || std::stoi(m[1]) < 1 ||
@@ -118,8 +141,8 @@ void add_preview_command(CLI::App& app, Action& action) {
 
       const Light start = rig.lights[0];
       const Vec3 up = s.scene.camera.spec().up.normalized();
-      const float radius = args->radius > 0.0f ? args->radius
-                                               : 0.25f * (start.position - s.scene.camera.spec().look_at).norm();
+      const float radius =
+          args->radius > 0.0f ? args->radius : 0.25f * (start.position - s.scene.camera.spec().look_at).norm();
       std::vector<double> frame_ms;
       Frame first, last;
       for (int i = 0; i < args->frames; ++i) {

@@ -512,14 +512,7 @@ void GlRelighter::State::render_shadow_map(const LightSamplePoint& s) {
     for (int face = 0; face < 6; ++face) {
       glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, cube_depth, 0);
       glClear(GL_DEPTH_BUFFER_BIT);
-      // look_at fixes up a degenerate hint; these are never degenerate.
-      const Vec3 f = forward[face], side = f.cross(up[face]).normalized(), u = side.cross(f);
-      Mat4 view = Mat4::Identity();
-      view.block<1, 3>(0, 0) = side.transpose();
-      view.block<1, 3>(1, 0) = u.transpose();
-      view.block<1, 3>(2, 0) = -f.transpose();
-      view.block<3, 1>(0, 3) = -(view.block<3, 3>(0, 0) * s.eye);
-      const Mat4 m = projection * view;
+      const Mat4 m = projection * look_at(s.eye, forward[face], up[face]);
       glUniformMatrix4fv(vp, 1, GL_FALSE, m.data());
       glDrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr);
     }

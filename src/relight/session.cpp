@@ -291,6 +291,7 @@ void RelightSession::run_job(Job& job) {
   try {
     switch (job.kind) {
       case Kind::interactive:
+        job.result = std::move(spare_);  // rendering into an image of the right size allocates nothing
         fast_->render(job.light, job.result);
         job.done = true;
         break;
@@ -367,7 +368,8 @@ void RelightSession::install_locked(Job& job) {
   if (job.kind != Kind::interactive && job.geometry != cache->geometry) return;
   switch (job.kind) {
     case Kind::interactive:
-      cache->direct = std::move(job.result);
+      std::swap(cache->direct, job.result);
+      if (job.result.width == view_->width() && job.result.height == view_->height()) spare_ = std::move(job.result);
       cache->direct_geometry = job.geometry;
       cache->stage = Stage::interactive;
       break;

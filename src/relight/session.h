@@ -126,6 +126,7 @@ class RelightSession {
   Image base_;                          // the frame without the focus light's direct light
   bool base_valid_ = false;
   std::vector<std::shared_ptr<Image>> frame_buffers_;
+  Image spare_;                         // a light's last interactive image, to render the next one into
   uint64_t edit_ = 1;                   // edit 1: the rig the session started with
   std::chrono::steady_clock::time_point last_edit_time_;
   Image environment_;                   // environment + its interreflection at scale 1; empty until rendered
