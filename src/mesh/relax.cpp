@@ -29,6 +29,21 @@ bool sees_vertex_surface(const ConnectivityMesh& mesh, uint32_t v, uint32_t seen
   return false;
 }
 
+// Whether the vertex at `to` would stay at least half a pixel from the line
+// of each opposite edge: a move the flip test allows could otherwise leave a
+// triangle all but flat.
+bool keeps_triangles_open(const ConnectivityMesh& mesh, uint32_t v, const Vec2& to, const ToImage& to_image) {
+  for (uint32_t t : mesh.vertices()[v].triangles) {
+    const auto& c = mesh.triangles()[t].vertices;
+    const int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+    const Vec2 a = to_image(mesh.vertices()[c[(k + 1) % 3]].position);
+    const Vec2 b = to_image(mesh.vertices()[c[(k + 2) % 3]].position);
+    const Vec2 ab = b - a, at = to - a;
+    if (std::abs(ab.x() * at.y() - ab.y() * at.x()) < 0.5f * ab.norm()) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 std::vector<float> log_gradient_magnitude(const PhotoSamples& photo) {
@@ -91,7 +106,9 @@ RelaxStats relax_towards_shadow_edges(ConnectivityMesh& mesh, const Camera& came
       if (std::abs(along) < 1e-6f) continue;
       const float distance = (plane->second - plane->first.dot(camera.position())) / along;
       if (!(distance > 0)) continue;
-      if (mesh.move_vertex(v, camera.position() + distance * dir, to_image, options.flip_test))
+      const Vec3 target = camera.position() + distance * dir;
+      if (keeps_triangles_open(mesh, v, to_image(target), to_image) &&
+          mesh.move_vertex(v, target, to_image, options.flip_test))
         ++stats.vertices_moved;
       else
         ++stats.moves_refused;

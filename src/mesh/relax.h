@@ -20,7 +20,7 @@ struct RelaxOptions {
 
 struct RelaxStats {
   size_t vertices_moved = 0;
-  size_t moves_refused = 0;  // by the flip test
+  size_t moves_refused = 0;  // by the flip test, or leaving a triangle under half a pixel high
 };
 
 // The gradient magnitude of the photo's log intensity (Sobel), per pixel:

@@ -46,6 +46,22 @@ double standard_deviation(std::span<const LineSample> samples) {
   return std::sqrt(std::max(0.0, n * sum2 - sum * sum) / (n * n));
 }
 
+// Whether splitting edge e at the image fraction s leaves every half of its
+// triangles at least min_edge_px^2 / 2 in image area. Without this bound the
+// edges a split adds inside a thin triangle (a column's facet one pixel
+// wide) would be split again and again, each time thinner.
+bool halves_large_enough(const ConnectivityMesh& mesh, const std::vector<Vec2>& image, uint32_t e, float s,
+                         float min_edge_px) {
+  const float min_area = 0.5f * min_edge_px * min_edge_px;
+  for (uint32_t t : mesh.edges()[e].triangles) {
+    const auto& c = mesh.triangles()[t].vertices;
+    const Vec2 u = image[c[1]] - image[c[0]], v = image[c[2]] - image[c[0]];
+    const float area = 0.5f * std::abs(u.x() * v.y() - u.y() * v.x());
+    if (std::min(s, 1.0f - s) * area < min_area) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 LineFit fit_line(std::span<const LineSample> samples) {
@@ -126,6 +142,7 @@ SubdivisionStats subdivide_along_shadows(ConnectivityMesh& mesh, const Camera& c
     ++stats.edges_tested;
     const std::optional<float> at = find_split(samples, length, options);
     if (!at) continue;
+    if (!halves_large_enough(mesh, image, e, *at / length, options.min_edge_px)) continue;
     const Vec3 a = mesh.vertices()[edge.vertices[0]].position, b = mesh.vertices()[edge.vertices[1]].position;
     const size_t first_new_edge = mesh.edges().size();
     project(mesh.split_edge(e, point_at_image_fraction(camera, a, b, *at / length)));

@@ -28,9 +28,10 @@ struct SubdivisionOptions {
   // The error (line fit: largest residual; end points: their difference;
   // standard deviation: sigma) relative to the edge's mean intensity above
   // which the edge is split. Relative, because a shadow scales the light.
-  float threshold = 0.25f;
+  float threshold = 0.15f;
   // No split closer than this (in pixels, at least 2) to an end of the edge,
-  // so edges shorter than twice this are never split; this bounds the work.
+  // so edges shorter than twice this are never split, and none that would
+  // leave a triangle under half this squared in image area; this bounds the work.
   float min_edge_px = 4.0f;
   size_t max_triangles = 4'000'000;
 };
