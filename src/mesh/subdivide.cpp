@@ -66,14 +66,15 @@ bool halves_large_enough(const ConnectivityMesh& mesh, const std::vector<Vec2>& 
 
 LineFit fit_line(std::span<const LineSample> samples) {
   // The normal equations 4.3-4.4: [n, sum x; sum x, sum x^2] [a; b] = [sum y; sum xy].
-  Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
-  Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
+  double sx = 0, sxx = 0, sy = 0, sxy = 0;
   for (const LineSample& s : samples) {
-    const double x = s.distance, y = s.intensity;
-    m += Eigen::Matrix2d{{1, x}, {x, x * x}};
-    rhs += Eigen::Vector2d(y, x * y);
+    sx += s.distance;
+    sxx += double(s.distance) * s.distance;
+    sy += s.intensity;
+    sxy += double(s.distance) * s.intensity;
   }
-  const Eigen::Vector2d ab = m.completeOrthogonalDecomposition().solve(rhs);
+  const Eigen::Matrix2d m{{double(samples.size()), sx}, {sx, sxx}};
+  const Eigen::Vector2d ab = m.ldlt().solve(Eigen::Vector2d(sy, sxy));
   return {ab.x(), ab.y()};
 }
 
