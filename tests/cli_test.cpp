@@ -120,6 +120,7 @@ TEST(Cli, MeshRefusesATrueAlbedoOfAnotherSize) {
   EXPECT_NE(err.find("small.exr"), std::string::npos) << err;
   EXPECT_NE(err.find("differs in size"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir / "mesh" / "mesh.json"));
+  EXPECT_FALSE(fs::exists(dir / "mesh" / "mesh.obj"));
 }
 
 }  // namespace

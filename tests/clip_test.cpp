@@ -1,8 +1,9 @@
 // Clipping to the view (thesis 4.3): edges split at the image border, what
 // is outside dropped, connectivity kept.
+#include "mesh/clip.h"
+
 #include <gtest/gtest.h>
 
-#include "mesh/clip.h"
 #include "mesh_invariants.h"
 
 using namespace relight;

@@ -22,7 +22,8 @@ inline std::string connectivity_errors(const ConnectivityMesh& mesh) {
       const uint32_t a = tri.vertices[k], b = tri.vertices[(k + 1) % 3];
       if (!((e.vertices[0] == a && e.vertices[1] == b) || (e.vertices[0] == b && e.vertices[1] == a)))
         errors += "triangle " + std::to_string(t) + " edge " + std::to_string(k) + " joins other vertices; ";
-      if (!has(e.triangles, t)) errors += "edge " + std::to_string(tri.edges[k]) + " misses triangle " + std::to_string(t) + "; ";
+      if (!has(e.triangles, t))
+        errors += "edge " + std::to_string(tri.edges[k]) + " misses triangle " + std::to_string(t) + "; ";
       if (!has(mesh.vertices()[a].triangles, t))
         errors += "vertex " + std::to_string(a) + " misses triangle " + std::to_string(t) + "; ";
     }

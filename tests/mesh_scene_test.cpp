@@ -32,7 +32,8 @@ TEST(OutdoorMesh, FollowsTheSunsShadowEdges) {
   const PhotoSamples photo = photo_samples(scene.photo, gbuffer);
   int w, h;
   const std::vector<float> mask = read_scalar_image(folder / "mask.exr", w, h);
-  const std::vector<uint8_t> shadow = shadow_edge_pixels(scene.photo, read_image(folder / "albedo_gt.exr"), mask, gbuffer);
+  const std::vector<uint8_t> shadow =
+      shadow_edge_pixels(scene.photo, read_image(folder / "albedo_gt.exr"), mask, gbuffer);
   const size_t shadow_pixels = std::accumulate(shadow.begin(), shadow.end(), size_t(0));
   ASSERT_GT(shadow_pixels, 1000u);  // the sun's shadows: 4484 pixels
 
@@ -43,9 +44,10 @@ TEST(OutdoorMesh, FollowsTheSunsShadowEdges) {
   RefineReport report;
   const ConnectivityMesh refined = refine_mesh_for_photo(scene.mesh, scene.camera, photo, RefineOptions{}, report);
   const double after = share_within_1_5_px(shadow, visible_edge_pixels(refined, scene.camera, photo), w, h);
-  std::printf("[ figures  ] outdoor: %zu shadow-edge pixels, %.1f %% within 1.5 px of an edge before (%zu triangles "
-              "in view), %.1f %% after (%zu triangles)\n",
-              shadow_pixels, 100 * before, report.triangles_clipped, 100 * after, refined.triangles().size());
+  std::printf(
+      "[ figures  ] outdoor: %zu shadow-edge pixels, %.1f %% within 1.5 px of an edge before (%zu triangles "
+      "in view), %.1f %% after (%zu triangles)\n",
+      shadow_pixels, 100 * before, report.triangles_clipped, 100 * after, refined.triangles().size());
   // Measured: 46.8 % before (the modelled edges: columns, blocks), 94.8 % after.
   EXPECT_LT(before, 0.6);
   EXPECT_GE(after, 0.9);

@@ -175,7 +175,7 @@ TEST(VertexMove, BothFlipTestsAgreeInAConvexRing) {
     }
   }
   EXPECT_EQ(agree, moves);
-  EXPECT_GT(allowed, moves / 8);       // both outcomes occur
+  EXPECT_GT(allowed, moves / 8);  // both outcomes occur
   EXPECT_LT(allowed, moves - moves / 8);
 }
 

@@ -1,11 +1,12 @@
 // Relaxation (thesis 4.4): the gradient landscape, the uphill climb, and
 // vertices moving onto a shadow edge in their plane unless the move flips a
 // triangle.
+#include "mesh/relax.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "mesh/relax.h"
 #include "mesh_invariants.h"
 
 using namespace relight;

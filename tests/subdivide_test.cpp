@@ -1,10 +1,11 @@
 // Image-based adaptive subdivision (thesis 4.2): the line fit (eqs. 4.2-4.4),
 // where an edge is split and where not, the three criteria, the visible-only
 // pixel read, the 3D placement (4.2.4), and whole meshes along a shadow edge.
+#include "mesh/subdivide.h"
+
 #include <gtest/gtest.h>
 
 #include "mesh/clip.h"
-#include "mesh/subdivide.h"
 #include "mesh_invariants.h"
 
 using namespace relight;

@@ -37,13 +37,15 @@ nlohmann::json shadow_edge_figures(const std::string& albedo_path, const std::st
   if (!mask_path.empty()) {
     int w, h;
     mask = read_scalar_image(mask_path, w, h);
-    if (w != scene.photo.width || h != scene.photo.height) throw InputError(mask_path, "", "differs in size from the photo");
+    if (w != scene.photo.width || h != scene.photo.height)
+      throw InputError(mask_path, "", "differs in size from the photo");
   }
   const std::vector<uint8_t> shadow = shadow_edge_pixels(scene.photo, albedo, mask, gbuffer);
   size_t count = 0;
   for (uint8_t s : shadow) count += s;
-  return {{"shadow_edge_pixels", count},
-          {"shadow_edge_share_within_1_5_px", share_within_1_5_px(shadow, edges, scene.photo.width, scene.photo.height)}};
+  return {
+      {"shadow_edge_pixels", count},
+      {"shadow_edge_share_within_1_5_px", share_within_1_5_px(shadow, edges, scene.photo.width, scene.photo.height)}};
 }
 
 }  // namespace
@@ -73,11 +75,13 @@ void add_mesh_command(CLI::App& app, Action& action) {
   cmd->add_option("--relax", args->options.relax.iterations, "relaxation passes (0: none)")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
-  cmd->add_option("--flip-test", args->flip_test, "test that refuses relaxation moves: side (of edge) or segment (intersection)")
+  cmd->add_option("--flip-test", args->flip_test,
+                  "test that refuses relaxation moves: side (of edge) or segment (intersection)")
       ->check(CLI::IsMember({"side", "segment"}))
       ->capture_default_str();
-  cmd->add_option("--albedo-gt", args->albedo_gt,
-                  "the true albedo: mesh.json then reports the share of shadow-edge pixels within 1.5 px of a mesh edge");
+  cmd->add_option(
+      "--albedo-gt", args->albedo_gt,
+      "the true albedo: mesh.json then reports the share of shadow-edge pixels within 1.5 px of a mesh edge");
   cmd->add_option("--mask", args->mask, "with --albedo-gt: only pixels where this mask is 1 count");
   cmd->footer(
       "Example:\n  relight mesh scenes/outdoor/scene.json -o out/mesh\n"
@@ -94,34 +98,35 @@ void add_mesh_command(CLI::App& app, Action& action) {
       const ConnectivityMesh mesh = refine_mesh_for_photo(scene.mesh, scene.camera, photo, args->options, report);
       const std::vector<uint8_t> edges = visible_edge_pixels(mesh, scene.camera, photo);
 
+      nlohmann::json j = {{"triangles_input", report.triangles_input},
+                          {"triangles_in_view", report.triangles_clipped},
+                          {"triangles", mesh.triangles().size()},
+                          {"vertices", mesh.vertices().size()},
+                          {"edges", mesh.edges().size()},
+                          {"edges_split_clipping", report.clip.edges_split},
+                          {"edges_tested", report.subdivision.edges_tested},
+                          {"edges_split", report.subdivision.edges_split},
+                          {"vertices_moved", report.relax.vertices_moved},
+                          {"moves_refused", report.relax.moves_refused},
+                          {"welded_vertices", report.cleanup.welded_vertices},
+                          {"degenerate_triangles", report.cleanup.degenerate_triangles},
+                          {"non_manifold_edges", report.cleanup.non_manifold_edges},
+                          {"seconds", report.seconds},
+                          {"options",
+                           {{"criterion", args->criterion},
+                            {"threshold", args->options.subdivision.threshold},
+                            {"min_edge_px", args->options.subdivision.min_edge_px},
+                            {"relax", args->options.relax.iterations},
+                            {"flip_test", args->flip_test}}}};
+      // Every input is read before anything is written.
+      if (!args->albedo_gt.empty()) j.update(shadow_edge_figures(args->albedo_gt, args->mask, scene, gbuffer, edges));
+
       const fs::path out = args->out;
       std::error_code ec;
       fs::create_directories(out, ec);
       if (!fs::is_directory(out)) throw InputError(out.string(), "", "cannot create the output folder");
       save_obj(out / "mesh.obj", mesh.to_triangle_mesh());
       write_png(out / "mesh.png", draw_edges_over_photo(scene.photo, edges));
-      nlohmann::json j = {
-          {"triangles_input", report.triangles_input},
-          {"triangles_in_view", report.triangles_clipped},
-          {"triangles", mesh.triangles().size()},
-          {"vertices", mesh.vertices().size()},
-          {"edges", mesh.edges().size()},
-          {"edges_split_clipping", report.clip.edges_split},
-          {"edges_tested", report.subdivision.edges_tested},
-          {"edges_split", report.subdivision.edges_split},
-          {"vertices_moved", report.relax.vertices_moved},
-          {"moves_refused", report.relax.moves_refused},
-          {"welded_vertices", report.cleanup.welded_vertices},
-          {"degenerate_triangles", report.cleanup.degenerate_triangles},
-          {"non_manifold_edges", report.cleanup.non_manifold_edges},
-          {"seconds", report.seconds},
-          {"options",
-           {{"criterion", args->criterion},
-            {"threshold", args->options.subdivision.threshold},
-            {"min_edge_px", args->options.subdivision.min_edge_px},
-            {"relax", args->options.relax.iterations},
-            {"flip_test", args->flip_test}}}};
-      if (!args->albedo_gt.empty()) j.update(shadow_edge_figures(args->albedo_gt, args->mask, scene, gbuffer, edges));
       write_text_atomically(out / "mesh.json", j.dump(2) + "\n");
       std::printf("mesh: %zu triangles in view -> %zu (%zu edges split, %zu vertices moved) in %.3f s, written to %s\n",
                   report.triangles_clipped, mesh.triangles().size(), report.subdivision.edges_split,

@@ -108,7 +108,8 @@ ConnectivityMesh::ConnectivityMesh(const TriangleMesh& mesh, float weld_distance
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     std::array<uint32_t, 3> c;
     for (int k = 0; k < 3; ++k) c[k] = index[weld[mesh.triangles[t][k]]];
-    if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0] || is_degenerate(positions[c[0]], positions[c[1]], positions[c[2]])) {
+    if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0] ||
+        is_degenerate(positions[c[0]], positions[c[1]], positions[c[2]])) {
       ++cleanup_.degenerate_triangles;
       continue;
     }
@@ -152,6 +153,11 @@ uint32_t ConnectivityMesh::find_edge(uint32_t a, uint32_t b) const {
       if ((v[0] == a && v[1] == b) || (v[0] == b && v[1] == a)) return e;
     }
   return kNone;
+}
+
+void ConnectivityMesh::edge_sources(uint32_t e, std::vector<uint32_t>& out) const {
+  out.clear();
+  for (uint32_t t : edges_[e].triangles) out.push_back(triangles_[t].source);
 }
 
 bool ConnectivityMesh::is_interior_vertex(uint32_t v) const {
@@ -201,8 +207,8 @@ bool ConnectivityMesh::move_vertex(uint32_t v, const Vec3& position, const ToIma
     const auto& c = triangles_[t].vertices;
     const int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
     const Vec2 a = to_image(vertices_[c[(k + 1) % 3]].position), b = to_image(vertices_[c[(k + 2) % 3]].position);
-    const bool flips = test == FlipTest::side_of_edge ? !stays_on_side_of_edge(a, b, from, to)
-                                                      : move_crosses_edge(a, b, from, to);
+    const bool flips =
+        test == FlipTest::side_of_edge ? !stays_on_side_of_edge(a, b, from, to) : move_crosses_edge(a, b, from, to);
     if (flips) return false;
   }
   vertices_[v].position = position;

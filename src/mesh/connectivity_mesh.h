@@ -66,6 +66,8 @@ class ConnectivityMesh {
   // The edge joining vertices a and b, or kNone.
   static constexpr uint32_t kNone = UINT32_MAX;
   uint32_t find_edge(uint32_t a, uint32_t b) const;
+  // The input triangles an edge lies on (what a pixel showing it may see).
+  void edge_sources(uint32_t e, std::vector<uint32_t>& out) const;
   // On the mesh boundary or a non-manifold edge: not free to move.
   bool is_interior_vertex(uint32_t v) const;
 

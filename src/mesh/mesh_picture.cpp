@@ -5,15 +5,15 @@
 
 namespace relight {
 
-std::vector<uint8_t> visible_edge_pixels(const ConnectivityMesh& mesh, const Camera& camera, const PhotoSamples& photo) {
+std::vector<uint8_t> visible_edge_pixels(const ConnectivityMesh& mesh, const Camera& camera,
+                                         const PhotoSamples& photo) {
   std::vector<uint8_t> marked(size_t(photo.width) * photo.height, 0);
   std::vector<uint32_t> visible;
-  for (const MeshEdge& e : mesh.edges()) {
-    const auto a = camera.project(mesh.vertices()[e.vertices[0]].position);
-    const auto b = camera.project(mesh.vertices()[e.vertices[1]].position);
+  for (uint32_t e = 0; e < mesh.edges().size(); ++e) {
+    const auto a = camera.project(mesh.vertices()[mesh.edges()[e].vertices[0]].position);
+    const auto b = camera.project(mesh.vertices()[mesh.edges()[e].vertices[1]].position);
     if (!a || !b) continue;
-    visible.clear();
-    for (uint32_t t : e.triangles) visible.push_back(mesh.triangles()[t].source);
+    mesh.edge_sources(e, visible);
     walk_visible_pixels(photo, *a, *b, visible, [&](int x, int y) { marked[size_t(y) * photo.width + x] = 1; });
   }
   return marked;
@@ -22,8 +22,8 @@ std::vector<uint8_t> visible_edge_pixels(const ConnectivityMesh& mesh, const Cam
 Image draw_edges_over_photo(const Image& photo, const std::vector<uint8_t>& edges) {
   Image picture(photo.width, photo.height);
   for (size_t i = 0; i < photo.size(); ++i)
-    picture.pixels[i] = edges[i] ? Vec3(0.0f, 1.0f, 0.0f)
-                                 : Vec3(photo.pixels[i].array() / (1.0f + photo.pixels[i].array().max(0.0f)));
+    picture.pixels[i] =
+        edges[i] ? Vec3(0.0f, 1.0f, 0.0f) : Vec3(photo.pixels[i].array() / (1.0f + photo.pixels[i].array().max(0.0f)));
   return picture;
 }
 

@@ -33,8 +33,8 @@ PhotoSamples photo_samples(const Image& photo, const GBuffer& gbuffer);
 // Calls visit(x, y) for each pixel of the Bresenham line under the image
 // segment from `from` to `to` that shows one of the `visible` triangles.
 template <class Visit>
-void walk_visible_pixels(const PhotoSamples& photo, const Vec2& from, const Vec2& to,
-                         std::span<const uint32_t> visible, Visit&& visit) {
+void walk_visible_pixels(const PhotoSamples& photo, const Vec2& from, const Vec2& to, std::span<const uint32_t> visible,
+                         Visit&& visit) {
   // Ends on the image border (x == width after clipping) belong to the pixel inside.
   const auto pixel = [](float v, int size) { return std::clamp(int(std::floor(v)), 0, size - 1); };
   walk_line(pixel(from.x(), photo.width), pixel(from.y(), photo.height), pixel(to.x(), photo.width),

@@ -17,8 +17,10 @@ std::optional<std::pair<Vec3, float>> common_plane(const ConnectivityMesh& mesh,
     const Vec3 a = mesh.vertices()[c[0]].position, b = mesh.vertices()[c[1]].position,
                d = mesh.vertices()[c[2]].position;
     const Vec3 n = (b - a).cross(d - a).normalized();
-    if (!normal) normal = n;
-    else if (std::abs(normal->dot(n)) < 0.9999f) return std::nullopt;
+    if (!normal)
+      normal = n;
+    else if (std::abs(normal->dot(n)) < 0.9999f)
+      return std::nullopt;
   }
   return std::make_pair(*normal, normal->dot(p));
 }
@@ -98,8 +100,7 @@ RelaxStats relax_towards_shadow_edges(ConnectivityMesh& mesh, const Camera& came
       const int x = int(std::floor(at.x())), y = int(std::floor(at.y()));
       if (!photo.inside(x, y) || !sees_vertex_surface(mesh, v, photo.triangle_at(x, y))) continue;
       const Eigen::Vector2i top = climb(gradient, photo.width, photo.height, x, y, options.max_steps_px);
-      if (top == Eigen::Vector2i(x, y) || !sees_vertex_surface(mesh, v, photo.triangle_at(top.x(), top.y())))
-        continue;
+      if (top == Eigen::Vector2i(x, y) || !sees_vertex_surface(mesh, v, photo.triangle_at(top.x(), top.y()))) continue;
       // The point of the vertex's plane seen at the centre of the top pixel.
       const Vec3 dir = camera.ray_direction(top.x() + 0.5f, top.y() + 0.5f);
       const float along = dir.dot(plane->first);

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <deque>
 
-
 namespace relight {
 
 namespace {
@@ -123,7 +122,9 @@ SubdivisionStats subdivide_along_shadows(ConnectivityMesh& mesh, const Camera& c
                                          const SubdivisionOptions& options) {
   SubdivisionStats stats;
   std::vector<Vec2> image;  // each vertex's image position
-  const auto project = [&](uint32_t v) { image.push_back(camera.project(mesh.vertices()[v].position).value_or(Vec2(-1e9f, -1e9f))); };
+  const auto project = [&](uint32_t v) {
+    image.push_back(camera.project(mesh.vertices()[v].position).value_or(Vec2(-1e9f, -1e9f)));
+  };
   for (uint32_t v = 0; v < mesh.vertices().size(); ++v) project(v);
 
   std::deque<uint32_t> queue;
@@ -137,8 +138,7 @@ SubdivisionStats subdivide_along_shadows(ConnectivityMesh& mesh, const Camera& c
     const Vec2 p0 = image[edge.vertices[0]], p1 = image[edge.vertices[1]];
     const float length = (p1 - p0).norm();
     if (length < 2.0f * std::max(2.0f, options.min_edge_px)) continue;
-    visible.clear();
-    for (uint32_t t : edge.triangles) visible.push_back(mesh.triangles()[t].source);
+    mesh.edge_sources(e, visible);
     read_line(photo, p0, p1, visible, samples);
     ++stats.edges_tested;
     const std::optional<float> at = find_split(samples, length, options);
