@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "io/image_io.h"
 #include "scene_folder.h"
+#include "io/mesh_io.h"
 
 namespace fs = std::filesystem;
 
@@ -182,6 +183,37 @@ TEST(Cli, PreviewRefusesABadSize) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("16by12"), std::string::npos) << r.err;
+TEST(Cli, MeshWritesTheRefinedMeshItsPictureAndItsCounts) {
+  const fs::path dir = temp_folder("mesh");
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(relight_run({"mesh", (kRoom / "scene.json").string(), "-o", (dir / "mesh").string(), "--albedo-gt",
+                         (kRoom / "albedo_gt.exr").string(), "--mask", (kRoom / "mask.exr").string()}),
+            0);
+  const std::string out = testing::internal::GetCapturedStdout();
+  EXPECT_NE(out.find("edges split"), std::string::npos) << out;
+  EXPECT_NE(out.find("shadow-edge pixels within 1.5 px"), std::string::npos) << out;
+  const relight::TriangleMesh mesh = relight::load_mesh(dir / "mesh" / "mesh.obj");
+  const relight::Image picture = relight::read_image(dir / "mesh" / "mesh.png");
+  EXPECT_EQ(picture.width, 320);
+  EXPECT_EQ(picture.height, 240);
+  std::ifstream json(dir / "mesh" / "mesh.json");
+  const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"triangles\": " + std::to_string(mesh.triangles.size())), std::string::npos) << text;
+  EXPECT_NE(text.find("\"shadow_edge_share_within_1_5_px\""), std::string::npos) << text;
+}
+
+TEST(Cli, MeshRefusesATrueAlbedoOfAnotherSize) {
+  const fs::path dir = temp_folder("meshsize");
+  relight::write_exr(dir / "small.exr", relight::Image(10, 10));
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(relight_run({"mesh", (kRoom / "scene.json").string(), "-o", (dir / "mesh").string(), "--albedo-gt",
+                         (dir / "small.exr").string()}),
+            2);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("small.exr"), std::string::npos) << err;
+  EXPECT_NE(err.find("differs in size"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir / "mesh" / "mesh.json"));
+  EXPECT_FALSE(fs::exists(dir / "mesh" / "mesh.obj"));
 }
 
 }  // namespace

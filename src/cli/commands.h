@@ -24,6 +24,7 @@ void add_rig_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);
 void add_preview_command(CLI::App& app, Action& action);
 void add_fit_command(CLI::App& app, Action& action);
+void add_mesh_command(CLI::App& app, Action& action);
 
 // A loaded scene with its ray-tracing structure and G-buffer.
 struct LoadedScene {

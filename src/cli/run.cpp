@@ -67,6 +67,7 @@ int run(std::span<const std::string> args) {
   add_compare_command(app, action);
   add_preview_command(app, action);
   add_fit_command(app, action);
+  add_mesh_command(app, action);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 wants them reversed, without argv[0]
   try {
