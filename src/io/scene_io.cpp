@@ -229,8 +229,8 @@ Scene load_scene(const fs::path& path) {
   GeometryContents geometry(r, scene.geometry_path);
   const CameraSpec camera = parse_camera(r, r.required(root, "", "camera"), geometry);
   const json* lights = r.optional(root, "lights");
-  if (lights && lights->is_object()) {
-    if (!r.boolean(r.required(*lights, "/lights", "from_geometry"), "/lights/from_geometry"))
+  if (lights && lights->is_object() && lights->contains("from_geometry")) {
+    if (!r.boolean((*lights)["from_geometry"], "/lights/from_geometry"))
       r.fail("/lights/from_geometry", "expected true (or list the lights in an array)");
     r.warn_unknown_keys(*lights, "/lights", {"from_geometry"});
     scene.lights = geometry.get("/lights/from_geometry").lights;
