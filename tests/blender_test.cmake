@@ -23,4 +23,4 @@ run("${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${expor
 run("${RELIGHT}" rig "${WORK}/export/scene.json" -o "${WORK}/rig.json")
 run("${RELIGHT}" analyze "${WORK}/export/scene.json" -o "${WORK}/analysis" --spp 16)
 run("${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${SOURCE_DIR}/tests/blender/check_export.py" --
-    "${exporter}" "${WORK}/export" "${WORK}/rig.json" "${WORK}/analysis")
+    "${exporter}" "${WORK}/export" "${WORK}/rig.json" "${WORK}/analysis" "${RELIGHT}")
