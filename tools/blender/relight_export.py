@@ -30,7 +30,7 @@ import bpy
 import mathutils
 
 
-class ExportError(Exception):
+class BridgeError(Exception):
     pass
 
 
@@ -39,10 +39,10 @@ def _vec(v):
 
 
 def _axes(obj):
-    """World position, and the object's -Z (where a camera or light points), +Y and +X, unit."""
+    """World position, and the object's -Z (where a camera or light points) and +Y, unit."""
     m = obj.matrix_world
     rot = m.to_3x3().normalized()
-    return m.translation.copy(), -rot.col[2], rot.col[1], rot.col[0]
+    return m.translation.copy(), -rot.col[2], rot.col[1]
 
 
 # ------------------------------------------------------------------ export
@@ -50,10 +50,10 @@ def _axes(obj):
 def camera_block(scene):
     cam = scene.camera
     if cam is None or cam.type != 'CAMERA':
-        raise ExportError("the scene has no active camera")
+        raise BridgeError("the scene has no active camera")
     data = cam.data
     if data.type != 'PERSP':
-        raise ExportError("the active camera '%s' is not a perspective camera" % cam.name)
+        raise BridgeError("the active camera '%s' is not a perspective camera" % cam.name)
     render = scene.render
     width = render.resolution_x * render.pixel_aspect_x
     height = render.resolution_y * render.pixel_aspect_y
@@ -68,7 +68,7 @@ def camera_block(scene):
     tan_half = sensor / (2.0 * data.lens)
     if fit == 'HORIZONTAL':
         tan_half *= height / width
-    position, forward, up, _ = _axes(cam)
+    position, forward, up = _axes(cam)
     block = {
         "position": _vec(position),
         "look_at": _vec(position + forward),
@@ -85,7 +85,7 @@ def camera_block(scene):
 
 def light_entry(obj):
     light = obj.data
-    position, forward, up, _ = _axes(obj)
+    position, forward, up = _axes(obj)
     scale = obj.matrix_world.to_scale()
     entry = {"name": obj.name, "color": _vec(light.color)}
     if obj.hide_render:
@@ -111,7 +111,7 @@ def light_entry(obj):
         if light.angle > 0.0:
             entry["angle_deg"] = math.degrees(light.angle)
     else:
-        raise ExportError("light '%s' has type %s, which relight does not know" % (obj.name, light.type))
+        raise BridgeError("light '%s' has type %s, which relight does not know" % (obj.name, light.type))
     return entry
 
 
@@ -137,10 +137,10 @@ def world_entries(scene, outdir, probe_position):
         return {"background": _vec(c * strength for c in colour_input.default_value[:3])}
     texture = colour_input.links[0].from_node
     if texture.type != 'TEX_ENVIRONMENT' or texture.image is None:
-        raise ExportError("the world colour comes from a %s node; relight takes a colour or an "
+        raise BridgeError("the world colour comes from a %s node; relight takes a colour or an "
                           "Environment Texture (equirectangular HDRI)" % texture.type)
     if texture.projection != 'EQUIRECTANGULAR':
-        raise ExportError("the world's Environment Texture uses %s projection; relight takes equirectangular"
+        raise BridgeError("the world's Environment Texture uses %s projection; relight takes equirectangular"
                           % texture.projection)
     if abs(strength - 1.0) > 1e-6:
         print("relight_export: warning: the world strength %.3g is not applied to the probe image" % strength)
@@ -151,7 +151,7 @@ def world_entries(scene, outdir, probe_position):
     if vector.is_linked and vector.links[0].from_node.type == 'MAPPING':
         rotation = vector.links[0].from_node.inputs['Rotation'].default_value
         if abs(rotation[0]) > 1e-6 or abs(rotation[1]) > 1e-6:
-            raise ExportError("the world's Mapping node tilts the HDRI; relight takes rotations about Z only")
+            raise BridgeError("the world's Mapping node tilts the HDRI; relight takes rotations about Z only")
         forward = mathutils.Matrix.Rotation(-rotation[2], 3, 'Z') @ forward
     image = texture.image
     name = bpy.path.clean_name(os.path.splitext(image.name)[0]) + ".exr"
@@ -196,10 +196,10 @@ def export_scene(scene, outdir, photo=None):
     os.makedirs(outdir, exist_ok=True)
     photo = photo or camera_photo(scene)
     if not photo:
-        raise ExportError("no photo: give one (--photo, or the exporter's Photo field) or set it as the "
+        raise BridgeError("no photo: give one (--photo, or the exporter's Photo field) or set it as the "
                           "camera's background image")
     if not os.path.isfile(photo):
-        raise ExportError("the photo %s does not exist" % photo)
+        raise BridgeError("the photo %s does not exist" % photo)
     camera, resolution = camera_block(scene)
     photo_name = os.path.basename(photo)
     if os.path.abspath(os.path.dirname(photo)) != os.path.abspath(outdir):
@@ -246,10 +246,10 @@ def import_rig(path, collection=None, replace=False):
     with open(path) as f:
         doc = json.load(f)
     if doc.get("format") not in ("relight-rig/1", "relight-scene/1"):
-        raise ExportError("%s: not a relight rig or scene (format %r)" % (path, doc.get("format")))
+        raise BridgeError("%s: not a relight rig or scene (format %r)" % (path, doc.get("format")))
     lights = doc.get("lights", [])
     if not isinstance(lights, list):
-        raise ExportError("%s: /lights is not a list of lights" % path)
+        raise BridgeError("%s: /lights is not a list of lights" % path)
     collection = collection or bpy.context.scene.collection
     if replace:
         for obj in [o for o in bpy.context.scene.objects if o.type == 'LIGHT']:
@@ -304,7 +304,7 @@ class RELIGHT_OT_export(bpy.types.Operator):
     def execute(self, context):
         try:
             path = export_scene(context.scene, bpy.path.abspath(self.directory), bpy.path.abspath(self.photo) or None)
-        except ExportError as e:
+        except BridgeError as e:
             self.report({'ERROR'}, "relight export: " + str(e))
             return {'CANCELLED'}
         self.report({'INFO'}, "relight scene written to " + path)
@@ -327,7 +327,7 @@ class RELIGHT_OT_import_rig(bpy.types.Operator):
     def execute(self, context):
         try:
             made = import_rig(self.filepath, replace=self.replace)
-        except (ExportError, KeyError, ValueError) as e:
+        except (BridgeError, KeyError, ValueError) as e:
             self.report({'ERROR'}, "relight import: %s" % e)
             return {'CANCELLED'}
         self.report({'INFO'}, "%d lights imported" % len(made))
@@ -381,7 +381,7 @@ def main(argv):
             export_scene(bpy.context.scene, os.path.abspath(args.outdir), args.photo)
         else:
             parser.error("give OUTDIR, or --import-rig RIG")
-    except (ExportError, KeyError, ValueError, OSError) as e:
+    except (BridgeError, KeyError, ValueError, OSError) as e:
         print("relight_export: error: %s" % e, file=sys.stderr)
         sys.exit(2)
 
