@@ -56,6 +56,30 @@ TEST(Cli, UnknownOptionIsBadInput) {
   testing::internal::GetCapturedStderr();
 }
 
+// stdout of relight with `args`, which must exit with status 0.
+std::string relight_stdout(std::vector<std::string> args) {
+  testing::internal::CaptureStdout();
+  const int status = relight_run(std::move(args));
+  const std::string out = testing::internal::GetCapturedStdout();
+  EXPECT_EQ(status, 0) << out;
+  return out;
+}
+
+TEST(Cli, VersionIsTheProjectVersion) {
+  EXPECT_EQ(relight_stdout({"--version"}), "relight " RELIGHT_VERSION "\n");
+}
+
+TEST(Cli, EveryCommandHasAManPageHelpWithExamples) {
+  const std::string top = relight_stdout({"--help"});
+  for (const std::string command : {"analyze", "render", "rig", "fit", "compare", "preview", "camera-from-fspy"}) {
+    EXPECT_NE(top.find("  " + command + " "), std::string::npos) << command << " missing from relight --help";
+    const std::string help = relight_stdout({command, "--help"});
+    for (const char* section : {"DESCRIPTION", "EXAMPLES", "EXIT STATUS", "SEE ALSO"})
+      EXPECT_NE(help.find(section), std::string::npos) << command << " --help lacks " << section;
+    EXPECT_NE(help.find("  relight " + command + " "), std::string::npos) << command << " --help has no example of it";
+  }
+}
+
 TEST(Cli, AnalyseRigRenderGivesBackThePhoto) {
   const fs::path dir = temp_folder("sequence");
   const std::string scene = (kRoom / "scene.json").string();

@@ -377,13 +377,24 @@ std::vector<CameraCase> camera_cases() {
   return {a, b};
 }
 
-// FORMAT.md's ray for pixel (col, row), computed in double from the text.
+// Cameras whose principal point is off the image centre (docs/formats.md).
+std::vector<CameraCase> off_centre_cases() {
+  std::vector<CameraCase> cases = camera_cases();
+  cases[0].spec.principal_point = Vec2(0.3f, 0.65f);   // shifted left and down
+  cases[1].spec.principal_point = Vec2(0.9f, -0.2f);  // far off, above the image
+  return cases;
+}
+
+// FORMAT.md's ray for pixel (col, row), computed in double from the text,
+// with docs/formats.md's principal point (u, v): x = 2(col+0.5)/W - 2u,
+// y = 2v - 2(row+0.5)/H (FORMAT.md's formula where u = v = 0.5).
 Eigen::Vector3d format_ray(const CameraSpec& s, int w, int h, int col, int row) {
   const Eigen::Vector3d pos = s.position.cast<double>(), at = s.look_at.cast<double>(), up = s.up.cast<double>();
   const Eigen::Vector3d forward = (at - pos).normalized();
   const Eigen::Vector3d right = forward.cross(up).normalized();
   const Eigen::Vector3d up2 = right.cross(forward);
-  const double x = 2.0 * (col + 0.5) / w - 1.0, y = 1.0 - 2.0 * (row + 0.5) / h;
+  const double u = s.principal_point.x(), v = s.principal_point.y();
+  const double x = 2.0 * (col + 0.5) / w - 2.0 * u, y = 2.0 * v - 2.0 * (row + 0.5) / h;
   const double t = std::tan(s.vfov_deg * kPiD / 360.0);
   return (forward + x * t * (double(w) / h) * right + y * t * up2).normalized();
 }
@@ -476,6 +487,52 @@ TEST(Camera, ProjectsPixelCentresAndCorners) {
   EXPECT_LT((*cam.project(p) - Vec2(3.5f, 5.5f)).norm(), 1e-3f);
   EXPECT_FALSE(cam.project(c.spec.position - cam.forward()).has_value());
   EXPECT_FALSE(cam.project(c.spec.position).has_value());
+}
+
+TEST(Camera, OffCentrePrincipalPointRaysAreTheFormula) {
+  for (const auto& c : off_centre_cases()) {
+    const Camera cam(c.spec, c.width, c.height);
+    for (int row = 0; row < c.height; row += 7)
+      for (int col = 0; col < c.width; col += 5)
+        EXPECT_LT((cam.ray_direction(col + 0.5f, row + 0.5f).cast<double>() -
+                   format_ray(c.spec, c.width, c.height, col, row))
+                      .norm(),
+                  2e-6)
+            << "pixel " << col << "," << row;
+  }
+}
+
+TEST(Camera, OffCentrePrincipalPointLooksAtLookAtWithTheSameFocalLength) {
+  for (const auto& c : off_centre_cases()) {
+    const Camera cam(c.spec, c.width, c.height);
+    const Vec2 pp(c.spec.principal_point.x() * c.width, c.spec.principal_point.y() * c.height);
+    EXPECT_LT((cam.ray_direction(pp.x(), pp.y()) - cam.forward()).norm(), 1e-6f);
+    EXPECT_LT((*cam.project(c.spec.look_at) - pp).norm(), 1e-3f);
+    // Half the image height above the principal point is vfov/2 off the axis, as in a centred camera.
+    const double half = std::acos(double(cam.ray_direction(pp.x(), pp.y() - c.height / 2.0f).dot(cam.forward())));
+    EXPECT_NEAR(half * 360.0 / kPiD, c.spec.vfov_deg, 1e-3);
+    // Moving the principal point right moves the image of a point right by the same amount.
+    CameraSpec centred = c.spec;
+    centred.principal_point = Vec2(0.5f, 0.5f);
+    const Camera centre_cam(centred, c.width, c.height);
+    const Vec3 p = c.spec.position + 5.0f * cam.forward() + 0.7f * c.spec.up.normalized();
+    const Vec2 shift = *cam.project(p) - *centre_cam.project(p);
+    EXPECT_LT((shift - (pp - Vec2(c.width / 2.0f, c.height / 2.0f))).norm(), 1e-3f);
+  }
+}
+
+TEST(Camera, OffCentreProjectInvertsRayDirection) {
+  Rng rng(23, 0);
+  for (const auto& c : off_centre_cases()) {
+    const Camera cam(c.spec, c.width, c.height);
+    for (int i = 0; i < 2000; ++i) {
+      const Vec2 pixel(rng.uniform() * c.width, rng.uniform() * c.height);
+      const Vec3 p = c.spec.position + (0.5f + 20.0f * rng.uniform()) * cam.ray_direction(pixel.x(), pixel.y());
+      const auto back = cam.project(p);
+      ASSERT_TRUE(back.has_value());
+      ASSERT_LT((*back - pixel).norm(), 2e-3f) << "pixel " << pixel.transpose();
+    }
+  }
 }
 
 }  // namespace

@@ -20,7 +20,11 @@ void add_compare_command(CLI::App& app, Action& action) {
   cmd->add_option("reference", args->reference, "the true image")->required();
   cmd->add_option("--mask", args->mask, "weigh pixels by this mask (e.g. mask.exr); values are clipped to [0,1]");
   cmd->add_flag("--tonemap", args->tonemap, "compare x/(1+x) tone-mapped, sRGB-encoded values (for HDR renders)");
-  cmd->footer("Example:\n  relight compare out/albedo.exr scenes/outdoor/albedo_gt.exr --mask scenes/outdoor/mask.exr");
+  cmd->footer(help_footer(
+      "Prints the peak signal-to-noise ratio of IMAGE against REFERENCE in dB (higher is closer).",
+      {{"relight compare out/albedo.exr scenes/outdoor/albedo_gt.exr --mask scenes/outdoor/mask.exr",
+        "albedo PSNR over the pixels that see geometry"},
+       {"relight compare relit.exr scenes/outdoor/relit/night.exr --tonemap", "PSNR of a re-lit HDR image"}}));
   cmd->callback([&action, args] {
     action = [args](Progress&) {
       Image test = read_image(args->test), reference = read_image(args->reference);

@@ -24,10 +24,11 @@ void add_fit_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--out", args->out, "the fitted scene.json to write (paths rewritten to still resolve)")
       ->required();
   add_sampling_options(*cmd, args->options);
-  cmd->footer(
+  cmd->footer(help_footer(
       "Lights a probe sees get the power the probe measures; the background and the other lights are fitted so\n"
-      "that the albedo does not change across shadow edges.\n"
-      "Example:\n  relight fit scene.json -o scene_fitted.json && relight analyze scene_fitted.json -o analysis");
+      "  that the albedo does not change across shadow edges. Writes a complete scene.json.",
+      {{"relight fit scene.json -o scene_fitted.json && relight analyze scene_fitted.json -o analysis",
+        "fit the lights, then analyse with the fitted scene"}}));
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
       LoadedScene s = load_for_rendering(args->scene, args->options);

@@ -109,6 +109,13 @@ void add_preview_command(CLI::App& app, Action& action) {
   cmd->footer(
       "Example:\n  relight analyze scene.json -o analysis\n"
       "  relight preview scene.json --rig rigs/evening.json --analysis analysis --size 1280x720 -o preview");
+  cmd->footer(help_footer(
+      "Moves the rig's first light around a circle through the interactive relighting engine, writing each\n"
+      "  frame, the converged image and timing.json (frame times).",
+      {{"relight preview scene.json --rig rigs/evening.json --analysis analysis --size 1280x720 -o preview",
+        "60 frames at 1280x720 on the CPU backend"},
+       {"relight preview scene.json --rig rig.json --backend gl --frames 120 -o preview",
+        "the OpenGL shadow-map backend"}}));
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
       const Rig rig = load_rig(args->rig);

@@ -30,9 +30,12 @@ void add_render_command(CLI::App& app, Action& action) {
                   "an analysis folder from 'relight analyze' to reuse (else the scene is analysed first)");
   cmd->add_option("--exposure", args->exposure, "exposure of the PNG in stops")->capture_default_str();
   add_sampling_options(*cmd, args->options);
-  cmd->footer(
-      "Example:\n  relight analyze scene.json -o analysis\n"
-      "  relight render scene.json --rig rigs/evening.json --analysis analysis -o evening.exr");
+  cmd->footer(help_footer(
+      "Renders the photo under the rig's lights: the albedo times the new illumination. Writes OUT.exr and a\n"
+      "  tone-mapped PNG beside it. Without --analysis the scene is analysed first with the defaults.",
+      {{"relight render scene.json --rig rigs/evening.json --analysis analysis -o evening.exr",
+        "evening.exr and evening.png, reusing the analysis folder"},
+       {"relight render scene.json --rig rig.json -o relit.exr --exposure 1", "analyse, render, and a PNG one stop brighter"}}));
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
       const auto start = std::chrono::steady_clock::now();

@@ -15,7 +15,10 @@ void add_rig_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand("rig", "write a rig.json with the scene's own lights, to edit");
   cmd->add_option("scene", args->scene, "scene.json")->required();
   cmd->add_option("-o,--out", args->out, "rig.json to write")->required();
-  cmd->footer("Example:\n  relight rig scene.json -o my_rig.json");
+  cmd->footer(help_footer(
+      "Writes a rig.json holding the scene's own lights and environment_scale 1, the starting point of a new\n"
+      "  lighting design; rendering it unchanged gives back the photo.",
+      {{"relight rig scene.json -o my_rig.json", "my_rig.json with the scene's lights, to edit"}}));
   cmd->callback([&action, args] {
     action = [args](Progress&) {
       save_rig(args->out, rig_from_scene(load_scene(args->scene)));

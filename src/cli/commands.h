@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <span>
 #include <string>
@@ -25,6 +26,7 @@ void add_compare_command(CLI::App& app, Action& action);
 void add_preview_command(CLI::App& app, Action& action);
 void add_fit_command(CLI::App& app, Action& action);
 void add_mesh_command(CLI::App& app, Action& action);
+void add_camera_from_fspy_command(CLI::App& app, Action& action);
 
 // A loaded scene with its ray-tracing structure and G-buffer.
 struct LoadedScene {
@@ -47,6 +49,14 @@ struct AnalysedScene {
   Analysis analysis;
   LoadedScene loaded;
 };
+
+// A man-page style --help footer: DESCRIPTION, EXAMPLES (each a command line
+// and what it does), EXIT STATUS and where the full documentation is.
+struct HelpExample {
+  const char* command;
+  const char* effect;
+};
+std::string help_footer(const char* description, std::initializer_list<HelpExample> examples);
 
 // Options shared by analyze and render.
 void add_sampling_options(CLI::App& cmd, AnalysisOptions& options);

@@ -36,6 +36,16 @@ LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOpti
   return s;
 }
 
+std::string help_footer(const char* description, std::initializer_list<HelpExample> examples) {
+  std::string text = "DESCRIPTION\n  " + std::string(description) + "\n\nEXAMPLES\n";
+  for (const HelpExample& e : examples) text += "  " + std::string(e.command) + "\n      " + e.effect + "\n";
+  text +=
+      "\nEXIT STATUS\n  0 done; 2 bad input (one line naming the file and the problem); 1 internal error;\n"
+      "  130 interrupted (nothing half written)\n\n"
+      "SEE ALSO\n  docs/commands.md, docs/formats.md (installed in share/doc/relight)";
+  return text;
+}
+
 void add_sampling_options(CLI::App& cmd, AnalysisOptions& o) {
   cmd.add_option("--spp", o.paths_per_pixel, "light paths per pixel (more: less noise, slower)")
       ->check(CLI::Range(1, 1 << 16))
@@ -50,6 +60,13 @@ int run(std::span<const std::string> args) {
   CLI::App app{"relight: relight a photograph physically (analyse, then render new lighting)", "relight"};
   app.set_version_flag("--version", "relight " RELIGHT_VERSION);
   app.require_subcommand(1);
+  app.footer(help_footer(
+      "relight works out the light a photograph was taken under from the scene's geometry, camera, lights and\n"
+      "  probes, removes it (leaving the albedo) and renders the photo under new lights. 'relight COMMAND --help'\n"
+      "  describes each command.",
+      {{"relight analyze scene.json -o analysis", "recover the albedo"},
+       {"relight rig scene.json -o rig.json", "start a lighting design from the scene's lights"},
+       {"relight render scene.json --rig rig.json --analysis analysis -o relit.exr", "re-light the photo"}}));
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "print what each step does");
   int64_t max_pixels = kDefaultMaxImagePixels;
@@ -68,6 +85,7 @@ int run(std::span<const std::string> args) {
   add_preview_command(app, action);
   add_fit_command(app, action);
   add_mesh_command(app, action);
+  add_camera_from_fspy_command(app, action);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 wants them reversed, without argv[0]
   try {

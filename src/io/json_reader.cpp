@@ -22,7 +22,10 @@ JsonReader::json JsonReader::parse_file(const fs::path& path) {
   if (!in) throw InputError(name, "", "cannot be opened for reading");
   std::stringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  return parse_text(name, buffer.str());
+}
+
+JsonReader::json JsonReader::parse_text(const std::string& name, const std::string& text) {
   const auto line_at = [&](size_t offset) {
     return "line " + std::to_string(1 + std::count(text.begin(), text.begin() + long(std::min(offset, text.size())), '\n'));
   };

@@ -19,6 +19,8 @@ class JsonReader {
 
   // Reads and parses a file; syntax errors carry the line and column.
   static json parse_file(const std::filesystem::path& path);
+  // Parses JSON text held in memory; errors name `file` as parse_file's do.
+  static json parse_text(const std::string& file, const std::string& text);
 
   explicit JsonReader(std::string file) : file_(std::move(file)) {}
   const std::string& file() const { return file_; }

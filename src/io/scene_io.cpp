@@ -1,9 +1,12 @@
 #include "io/scene_io.h"
 
+#include <optional>
+
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/gltf_scene.h"
 #include "io/image_io.h"
 #include "io/json_reader.h"
 #include "io/mesh_io.h"
@@ -99,19 +102,49 @@ void expect_format(const JsonReader& r, const json& root, const char* expected) 
   if (f != expected) r.fail("/format", std::string("expected \"") + expected + "\", found \"" + f + "\"");
 }
 
-CameraSpec parse_camera(const JsonReader& r, const json& v) {
+// The cameras and lights of a glTF geometry, read once when the camera or
+// the lights come from it.
+class GeometryContents {
+ public:
+  GeometryContents(const JsonReader& r, fs::path geometry) : r_(r), geometry_(std::move(geometry)) {}
+  const GltfCamerasAndLights& get(const std::string& pointer) {
+    if (!is_gltf(geometry_))
+      r_.fail(pointer, "the geometry " + geometry_.string() + " is not glTF (.gltf/.glb); only glTF holds cameras and lights");
+    if (!contents_) contents_ = read_gltf_cameras_and_lights(geometry_);
+    return *contents_;
+  }
+  const fs::path& path() const { return geometry_; }
+
+ private:
+  const JsonReader& r_;
+  fs::path geometry_;
+  std::optional<GltfCamerasAndLights> contents_;
+};
+
+CameraSpec parse_camera(const JsonReader& r, const json& v, GeometryContents& geometry) {
   const std::string ptr = "/camera";
   r.expect_object(v, ptr);
   CameraSpec c;
-  c.position = r.vec3(r.required(v, ptr, "position"), ptr + "/position");
-  c.look_at = r.vec3(r.required(v, ptr, "look_at"), ptr + "/look_at");
-  c.up = r.direction(r.required(v, ptr, "up"), ptr + "/up");
-  c.vfov_deg = r.number(r.required(v, ptr, "vfov_deg"), ptr + "/vfov_deg", 0.0f, 179.0f);
-  if (c.vfov_deg <= 0.0f) r.fail(ptr + "/vfov_deg", "expected a field of view in (0, 179] degrees");
+  if (auto* name = r.optional(v, "from_geometry")) {
+    const std::string key = ptr + "/from_geometry";
+    c = find_gltf_camera(geometry.path(), geometry.get(key), r.string(*name, key));
+  } else {
+    c.position = r.vec3(r.required(v, ptr, "position"), ptr + "/position");
+    c.look_at = r.vec3(r.required(v, ptr, "look_at"), ptr + "/look_at");
+    c.up = r.direction(r.required(v, ptr, "up"), ptr + "/up");
+    c.vfov_deg = r.number(r.required(v, ptr, "vfov_deg"), ptr + "/vfov_deg", 0.0f, 179.0f);
+    if (c.vfov_deg <= 0.0f) r.fail(ptr + "/vfov_deg", "expected a field of view in (0, 179] degrees");
+  }
   const Vec3 forward = c.look_at - c.position;
   if (forward.norm() < 1e-6f) r.fail(ptr + "/look_at", "must differ from the camera position");
   if (forward.normalized().cross(c.up).norm() < 1e-4f) r.fail(ptr + "/up", "must not be parallel to the view direction");
-  r.warn_unknown_keys(v, ptr, {"position", "look_at", "up", "vfov_deg"});
+  if (auto* pp = r.optional(v, "principal_point")) {
+    const std::string pp_ptr = ptr + "/principal_point";
+    if (!pp->is_array() || pp->size() != 2) r.fail(pp_ptr, "expected [u, v], fractions of the photo's width and height");
+    // Beyond the image is allowed (strongly shifted lenses), within reason.
+    c.principal_point = Vec2(r.number((*pp)[0], pp_ptr + "/0", -10.0f, 10.0f), r.number((*pp)[1], pp_ptr + "/1", -10.0f, 10.0f));
+  }
+  r.warn_unknown_keys(v, ptr, {"position", "look_at", "up", "vfov_deg", "principal_point", "from_geometry"});
   return c;
 }
 
@@ -174,6 +207,14 @@ json light_to_json(const Light& l) {
 
 }  // namespace
 
+nlohmann::json camera_to_json(const CameraSpec& c) {
+  auto v3 = [](const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); };
+  json j = {{"position", v3(c.position)}, {"look_at", v3(c.look_at)}, {"up", v3(c.up)}, {"vfov_deg", c.vfov_deg}};
+  if (c.principal_point != Vec2(0.5f, 0.5f))
+    j["principal_point"] = json::array({c.principal_point.x(), c.principal_point.y()});
+  return j;
+}
+
 Scene load_scene(const fs::path& path) {
   const JsonReader r(path.string());
   const json root = JsonReader::parse_file(path);
@@ -182,12 +223,21 @@ Scene load_scene(const fs::path& path) {
 
   Scene scene;
   scene.path = path;
-  // Validate all the JSON before the (slow) file loads.
-  const CameraSpec camera = parse_camera(r, r.required(root, "", "camera"));
-  scene.lights = parse_lights(r, root);
-  if (auto* bg = r.optional(root, "background")) scene.background = r.color(*bg, "/background");
   scene.photo_path = resolve(path, r.string(r.required(root, "", "photo"), "/photo"));
   scene.geometry_path = resolve(path, r.string(r.required(root, "", "geometry"), "/geometry"));
+  // Validate all the JSON (and a glTF's cameras and lights) before the slow file loads.
+  GeometryContents geometry(r, scene.geometry_path);
+  const CameraSpec camera = parse_camera(r, r.required(root, "", "camera"), geometry);
+  const json* lights = r.optional(root, "lights");
+  if (lights && lights->is_object() && lights->contains("from_geometry")) {
+    if (!r.boolean((*lights)["from_geometry"], "/lights/from_geometry"))
+      r.fail("/lights/from_geometry", "expected true (or list the lights in an array)");
+    r.warn_unknown_keys(*lights, "/lights", {"from_geometry"});
+    scene.lights = geometry.get("/lights/from_geometry").lights;
+  } else {
+    scene.lights = parse_lights(r, root);
+  }
+  if (auto* bg = r.optional(root, "background")) scene.background = r.color(*bg, "/background");
   std::vector<std::pair<const json*, std::string>> probe_specs;
   if (auto* probes = r.optional(root, "probes")) {
     if (!probes->is_array()) r.fail("/probes", "expected an array of probes");
@@ -223,7 +273,7 @@ std::string scene_to_json(const Scene& scene, const fs::path& folder) {
   j["photo"] = relative(scene.photo_path);
   j["geometry"] = relative(scene.geometry_path);
   const CameraSpec& c = scene.camera.spec();
-  j["camera"] = {{"position", v3(c.position)}, {"look_at", v3(c.look_at)}, {"up", v3(c.up)}, {"vfov_deg", c.vfov_deg}};
+  j["camera"] = camera_to_json(c);
   j["lights"] = json::array();
   for (const auto& l : scene.lights) j["lights"].push_back(light_to_json(l));
   j["background"] = v3(scene.background);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "scene/scene.h"
@@ -18,6 +19,9 @@ Rig load_rig(const std::filesystem::path& path);
 // scene.json text for a scene; photo, geometry and probe paths are written
 // relative to `folder` (the folder the scene.json will be in).
 std::string scene_to_json(const Scene& scene, const std::filesystem::path& folder);
+
+// The `camera` block of scene.json (principal_point only where off centre).
+nlohmann::json camera_to_json(const CameraSpec& camera);
 
 // The rig as rig.json text, and written atomically.
 std::string rig_to_json(const Rig& rig);

@@ -13,6 +13,11 @@ struct CameraSpec {
   Vec3 look_at = Vec3(0, 1, 0);
   Vec3 up = Vec3(0, 0, 1);
   float vfov_deg = 40.0f;
+  // Where the optical axis meets the photo, as fractions of its width (from
+  // the left) and height (from the top); off centre in a cropped or
+  // shifted photo. vfov_deg is the field of view the photo's height would
+  // span with the principal point at its centre (it fixes the focal length).
+  Vec2 principal_point = Vec2(0.5f, 0.5f);
 };
 
 class Camera {
@@ -38,6 +43,7 @@ class Camera {
   int width_ = 0, height_ = 0;
   Vec3 forward_, right_, up_;
   float tan_half_ = 0.0f, aspect_ = 1.0f;
+  Vec2 shift_ = Vec2::Zero();  // the principal point in normalised device coordinates
 };
 
 }  // namespace relight

@@ -1,0 +1,116 @@
+# Checks what tools/blender/relight_export.py wrote for make_example_scene.py's
+# scene against the values that script set, and that a rig relight wrote from
+# the exported scene comes back into Blender as the same lights.
+# The albedo relight recovered in ANALYSIS (from the Cycles-rendered photo) must
+# be the colours the materials were given.
+# Last, a world lit by an HDRI exports as an equirect probe that relight loads.
+#   blender -b SCENE.blend --python-exit-code 1 --python check_export.py -- EXPORTER OUTDIR RIG ANALYSIS RELIGHT
+import importlib.util
+import subprocess
+import json
+import math
+import sys
+
+import bpy
+
+exporter_path, outdir, rig_path, analysis, relight = sys.argv[sys.argv.index("--") + 1:]
+spec = importlib.util.spec_from_file_location("relight_export", exporter_path)
+relight_export = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(relight_export)
+
+with open(outdir + "/scene.json") as f:
+    scene = json.load(f)
+
+
+def near(a, b, tol=1e-4):
+    a, b = (a, b) if isinstance(a, (list, tuple)) else ([a], [b])
+    assert len(a) == len(b) and all(abs(x - y) <= tol for x, y in zip(a, b)), "%r != %r" % (a, b)
+
+
+# The camera: 35 mm lens on a 36 mm sensor fitted to the 320 px width, lens shifted 0.05 widths.
+camera = scene["camera"]
+near(camera["vfov_deg"], math.degrees(2 * math.atan(18.0 / 35.0 * 240.0 / 320.0)))
+near(camera["position"], [6.0, -5.0, 3.5])
+near(camera["principal_point"], [0.45, 0.5])
+forward = [a - b for a, b in zip(camera["look_at"], camera["position"])]
+target = [0.0 - 6.0, 0.0 + 5.0, 0.6 - 3.5]
+norm = math.sqrt(sum(t * t for t in target))
+near(forward, [t / norm for t in target])
+
+lights = {light["name"]: light for light in scene["lights"]}
+assert sorted(lights) == ["Lamp", "Panel", "Spot", "Sun"], sorted(lights)
+near(lights["Lamp"]["power"], 150.0)
+near(lights["Lamp"]["radius"], 0.1)
+near(lights["Lamp"]["color"], [1.0, 0.9, 0.8])
+assert lights["Spot"]["type"] == "spot"
+near(lights["Spot"]["spot_angle_deg"], 40.0)
+near(lights["Spot"]["blend"], 0.2)
+d = [2.0, 3.0, -3.0]  # from (-2, -3, 3) to the origin
+near(lights["Spot"]["direction"], [x / math.sqrt(22.0) for x in d])
+near(lights["Panel"]["size"], [1.0, 0.5])
+near(lights["Panel"]["power"], 200.0)
+assert lights["Sun"]["type"] == "directional"
+near(lights["Sun"]["irradiance"], 1.0)
+near(lights["Sun"]["angle_deg"], 0.5)
+near(scene["background"], [0.05, 0.06, 0.08])
+
+# The geometry stays in Blender's world frame (Z up): the box's top corner (1.1, 0.8, 1.0) is a vertex.
+with open(outdir + "/geometry.obj") as f:
+    vertices = [tuple(map(float, line.split()[1:4])) for line in f if line.startswith("v ")]
+assert any(max(abs(a - b) for a, b in zip(v, (1.1, 0.8, 1.0))) < 1e-4 for v in vertices), "box corner missing"
+assert all(v[2] > -1e-4 for v in vertices), "a vertex below the floor: the axes were converted"
+
+# The albedo relight recovers on the box's top, the floor and the ball's side facing the camera.
+from bpy_extras.object_utils import world_to_camera_view
+from mathutils import Vector
+bscene = bpy.context.scene
+albedo = bpy.data.images.load(analysis + "/albedo.exr")
+width, height = albedo.size
+pixels = albedo.pixels[:]
+ball = Vector((-0.8, -0.4, 0.45))
+facing = ball + 0.45 * (bscene.camera.location - ball).normalized()
+for where, point, colour in [("box top", (0.6, 0.3, 1.0), (0.7, 0.25, 0.15)),
+                             ("floor", (2.5, 0.5, 0.0), (0.6, 0.6, 0.6)),
+                             ("ball", facing, (0.2, 0.4, 0.7))]:
+    view = world_to_camera_view(bscene, bscene.camera, Vector(point))
+    col, row = int(view.x * width), int(view.y * height)  # Blender's rows count from the bottom
+    mean = [0.0, 0.0, 0.0]
+    for r in range(row - 2, row + 3):
+        for c in range(col - 2, col + 3):
+            for k in range(3):
+                mean[k] += pixels[(r * width + c) * 4 + k] / 25.0
+    assert all(abs(m - t) < 0.06 * t + 0.005 for m, t in zip(mean, colour)), \
+        "%s: albedo %s, material %s" % (where, mean, colour)
+    print("check_export: %s albedo %.3f %.3f %.3f (material %.2f %.2f %.2f)" % (where, *mean, *colour))
+
+# Rig (written by relight) -> Blender lights -> exporter: the same lights again.
+made = relight_export.import_rig(rig_path, replace=True)  # replaced: the imported lights keep their names
+assert len(made) == 4
+for obj in made:
+    again = relight_export.light_entry(obj)
+    original = lights[obj.name]
+    assert again["type"] == original["type"], obj.name
+    for key, value in original.items():
+        if key in ("name", "type", "enabled"):
+            continue
+        near(again[key], value, 1e-3)
+print("check_export: camera, 4 lights, world and geometry as set; rig round trip exact")
+
+# An HDRI world (a generated equirect image, packed): exported as a probe facing -X, Z up, at the camera.
+hdri = bpy.data.images.new("sky", 64, 32, float_buffer=True)
+hdri.pixels.foreach_set([0.5] * (64 * 32 * 4))
+hdri.pack()
+world = bpy.context.scene.world
+texture = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
+texture.image = hdri
+world.node_tree.links.new(texture.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
+scene_path = relight_export.export_scene(bpy.context.scene, outdir + "/hdri", outdir + "/" + scene["photo"])
+with open(scene_path) as f:
+    probes = json.load(f)["probes"]
+assert len(probes) == 1 and probes[0]["mapping"] == "equirect", probes
+near(probes[0]["forward"], [-1.0, 0.0, 0.0])
+near(probes[0]["up"], [0.0, 0.0, 1.0])
+near(probes[0]["position"], camera["position"])
+loaded = subprocess.run([relight, "rig", scene_path, "-o", outdir + "/hdri/rig.json"], capture_output=True, text=True)
+assert loaded.returncode == 0, loaded.stderr
+print("check_export: HDRI world exported as an equirect probe relight loads")

@@ -1,0 +1,26 @@
+# The Blender bridge with Debian's blender: build a scene in Blender and render
+# its photo with Cycles, export it with tools/blender/relight_export.py,
+# analyse it with relight (the albedo must be the materials' colours: camera,
+# light units and world agree), and bring relight's rig back into Blender.
+#   cmake -DBLENDER=... -DRELIGHT=... -DSOURCE_DIR=... -DWORK=... -P blender_test.cmake
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+set(exporter "${SOURCE_DIR}/tools/blender/relight_export.py")
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+  message(STATUS "${out}")
+endfunction()
+
+set(blender "${BLENDER}" -b --factory-startup --python-exit-code 1)
+run(${blender} --python "${SOURCE_DIR}/tools/blender/make_example_scene.py" -- "${WORK}/scene.blend" "${WORK}/photo.exr"
+    --render 32)
+run("${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${exporter}" -- "${WORK}/export"
+    --photo "${WORK}/photo.exr")
+run("${RELIGHT}" rig "${WORK}/export/scene.json" -o "${WORK}/rig.json")
+run("${RELIGHT}" analyze "${WORK}/export/scene.json" -o "${WORK}/analysis" --spp 16)
+run("${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${SOURCE_DIR}/tests/blender/check_export.py" --
+    "${exporter}" "${WORK}/export" "${WORK}/rig.json" "${WORK}/analysis" "${RELIGHT}")
