@@ -7,6 +7,7 @@
 #include <QLineEdit>
 #include <QMouseEvent>
 #include <QPushButton>
+#include <QSettings>
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QtTest/QtTest>
@@ -107,6 +108,10 @@ class StudioTest : public QObject {
  private slots:
   void initTestCase() {
     QVERIFY(folder_.isValid());
+    // Recent files go to an ini file in the test's folder, not the user's settings.
+    QCoreApplication::setOrganizationName("relight-test");
+    QSettings::setDefaultFormat(QSettings::IniFormat);
+    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, folder_.filePath("settings"));
     const fs::path room = fs::path(RELIGHT_SOURCE_DIR) / "examples/room";
     const fs::path copy = folder_.path().toStdString();
     for (const char* f : {"scene.json", "photo.exr", "geometry.obj"}) fs::copy_file(room / f, copy / f);
@@ -135,6 +140,49 @@ class StudioTest : public QObject {
     QVERIFY(failed.wait(60000));
     QVERIFY(failed.at(0).at(0).toString().contains("nowhere.json"));
     QCOMPARE(document().light_count(), 1);  // the open scene stays
+  }
+
+  void the_display_encodes_like_a_png_export() {
+    // A ramp over [-0.1, 1.2) through +1 stop: 8-bit sRGB as write_png does it.
+    Image ramp(4096, 1);
+    for (int x = 0; x < ramp.width; ++x) ramp.at(x, 0) = Vec3::Constant(-0.1f + 1.3f * float(x) / ramp.width);
+    const QImage shown = to_qimage(ramp, 1.0f);
+    for (int x = 0; x < ramp.width; ++x) {
+      const float v = std::clamp(2.0f * ramp.at(x, 0).x(), 0.0f, 1.0f);
+      QCOMPARE(qRed(shown.pixel(x, 0)), int(std::lround(255.0f * srgb_encode(v))));
+    }
+    QCOMPARE(colour_hex(Vec3(1.0f, srgb_decode(128.0f / 255.0f), 0.0f)), QStringLiteral("#ff8000"));
+  }
+
+  void cancelling_the_analysis_keeps_the_open_scene() {
+    const fs::path other = fs::path(folder_.path().toStdString()) / "other";
+    fs::create_directories(other);
+    for (const char* f : {"scene.json", "photo.exr", "geometry.obj"})
+      fs::copy_file(fs::path(folder_.path().toStdString()) / f, other / f);
+    QSignalSpy failed(window_.get(), &MainWindow::openFailed);
+    window_->open_scene(QString::fromStdString((other / "scene.json").string()));
+    QVERIFY(window_->busy());
+    window_->cancel_task();
+    QVERIFY(failed.wait(240000));
+    QCOMPARE(failed.at(0).at(0).toString(), QStringLiteral("cancelled"));
+    QVERIFY(!fs::exists(other / "scene.analysis"));
+    QVERIFY(!window_->busy());
+    QCOMPARE(document().light(0).name, std::string("lamp"));
+  }
+
+  void saved_rigs_are_remembered_as_recent() {
+    StudioOptions options = quick_options();
+    options.remember_recent = true;
+    window_ = std::make_unique<MainWindow>(options);
+    QSignalSpy opened(window_.get(), &MainWindow::sceneOpened);
+    window_->open_scene(scene_);
+    QVERIFY(opened.wait(240000));
+    const QString first = folder_.filePath("first.json"), second = folder_.filePath("second.json");
+    QVERIFY(window_->save_rig(first));
+    QVERIFY(window_->save_rig(second));
+    QVERIFY(window_->save_rig(first));
+    QCOMPARE(QSettings().value("recent_rigs").toStringList(), QStringList({first, second}));
+    QCOMPARE(QSettings().value("recent_scenes").toStringList().value(0), QFileInfo(scene_).absoluteFilePath());
   }
 
   void adding_a_light_and_undo() {

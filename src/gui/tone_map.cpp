@@ -1,27 +1,46 @@
+// oneTBB before any Qt header: Qt's `emit` macro breaks TBB's headers.
+#include <tbb/parallel_for.h>
+
 #include "gui/tone_map.h"
 
 #include <QRegularExpression>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace relight::gui {
 
 namespace {
 
-int srgb_byte(float linear) { return int(std::lround(255.0f * srgb_encode(std::clamp(linear, 0.0f, 1.0f)))); }
+// The linear values where the 8-bit sRGB code steps up: code k+1 starts at
+// srgb_decode((k + 0.5) / 255). Looking a value up among them gives
+// round(255 srgb_encode(x)) without a pow per channel (a frame is millions).
+const std::array<float, 255>& code_boundaries() {
+  static const std::array<float, 255> boundaries = [] {
+    std::array<float, 255> b;
+    for (int k = 0; k < 255; ++k) b[size_t(k)] = srgb_decode((float(k) + 0.5f) / 255.0f);
+    return b;
+  }();
+  return boundaries;
+}
+
+int srgb_byte(float linear) {
+  const auto& b = code_boundaries();
+  return int(std::upper_bound(b.begin(), b.end(), linear) - b.begin());
+}
 
 }  // namespace
 
 QImage to_qimage(const Image& linear, float exposure_stops) {
   const float scale = std::exp2(exposure_stops);
   QImage image(linear.width, linear.height, QImage::Format_RGB888);
-  for (int y = 0; y < linear.height; ++y) {
+  tbb::parallel_for(0, linear.height, [&](int y) {
     uchar* row = image.scanLine(y);
     for (int x = 0; x < linear.width; ++x) {
       const Vec3 v = linear.at(x, y) * scale;
       for (int c = 0; c < 3; ++c) row[3 * x + c] = uchar(srgb_byte(v[c]));
     }
-  }
+  });
   return image;
 }
 
