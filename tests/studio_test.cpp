@@ -7,7 +7,10 @@
 #include <QLineEdit>
 #include <QMouseEvent>
 #include <QPushButton>
+#include <QMessageBox>
+#include <QProcess>
 #include <QSettings>
+#include <QTimer>
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QtTest/QtTest>
@@ -183,6 +186,41 @@ class StudioTest : public QObject {
     QVERIFY(window_->save_rig(first));
     QCOMPARE(QSettings().value("recent_rigs").toStringList(), QStringList({first, second}));
     QCOMPARE(QSettings().value("recent_scenes").toStringList().value(0), QFileInfo(scene_).absoluteFilePath());
+  }
+
+  void the_program_reports_a_bad_scene_in_one_line() {
+    QProcess studio;
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.insert("QT_QPA_PLATFORM", "offscreen");
+    studio.setProcessEnvironment(env);
+    studio.start(RELIGHT_STUDIO, {"--screenshot", folder_.filePath("shot.png"), folder_.filePath("nowhere.json")});
+    QVERIFY(studio.waitForFinished(120000));
+    QCOMPARE(studio.exitCode(), 2);
+    const QStringList lines = QString::fromLocal8Bit(studio.readAllStandardError()).split('\n', Qt::SkipEmptyParts);
+    QVERIFY(!lines.isEmpty());
+    QVERIFY2(lines.last().startsWith("relight-studio: " + folder_.filePath("nowhere.json") + ": "),
+             qPrintable(lines.last()));
+    QVERIFY(!QFile::exists(folder_.filePath("shot.png")));
+  }
+
+  void closing_with_unsaved_changes_asks_first() {
+    QTest::keyClick(&window_->geometry_view(), Qt::Key_Up);
+    const Vec3 moved = document().light(0).position;
+    // Answer the question the window asks (a modal message box) with `button`.
+    const auto answer = [](QMessageBox::StandardButton button) {
+      QTimer::singleShot(0, [button] {
+        auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+        QVERIFY(box);
+        QVERIFY(box->text().contains("not saved"));
+        box->button(button)->click();
+      });
+    };
+    answer(QMessageBox::Cancel);
+    QVERIFY(!window_->close());
+    QVERIFY(window_->isVisible());
+    QVERIFY(document().light(0).position == moved);
+    answer(QMessageBox::Discard);
+    QVERIFY(window_->close());
   }
 
   void adding_a_light_and_undo() {

@@ -17,7 +17,10 @@ namespace {
 
 // Once the scene is open and the view has converged: the window to `path`, then quit.
 void screenshot_when_converged(MainWindow& window, const QString& path) {
-  QObject::connect(&window, &MainWindow::openFailed, qApp, [] { QApplication::exit(2); });
+  QObject::connect(&window, &MainWindow::openFailed, qApp, [](const QString& error) {
+    std::fprintf(stderr, "relight-studio: %s\n", qPrintable(error));
+    QApplication::exit(2);
+  });
   QObject::connect(&window, &MainWindow::sceneOpened, &window, [&window, path] {
     auto* poll = new QTimer(&window);
     QObject::connect(poll, &QTimer::timeout, &window, [&window, path, poll] {
