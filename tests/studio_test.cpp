@@ -73,6 +73,14 @@ void expect_same_light(const Light& a, const Light& b) {
   EXPECT_EXACT(a.size.y(), b.size.y());
 }
 
+// Where to write pictures of widgets for a look (RELIGHT_TEST_IMAGES=folder), if anywhere.
+void keep_picture(const QString& name, QWidget& widget) {
+  if (const char* folder = std::getenv("RELIGHT_TEST_IMAGES")) {
+    fs::create_directories(folder);
+    QVERIFY(widget.grab().save(QString::fromLocal8Bit(folder) + "/" + name + ".png"));
+  }
+}
+
 // Pixels whose colour differs between two images of one size.
 int differing_pixels(const QImage& a, const QImage& b) {
   int n = 0;
@@ -279,10 +287,12 @@ class StudioTest : public QObject {
     area.direction = Vec3(0, 1, 0);
     dialog.set_light(area);
     QVERIFY(dialog.validation_error().isEmpty());
+    keep_picture("light_dialog_area", dialog);
     auto* ok = dialog.findChildren<QPushButton*>().first();
     dialog.findChild<QLineEdit*>("colour")->setText("#12zz45");
     QVERIFY(dialog.validation_error().startsWith("Colour: \u201c#12zz45\u201d is not a colour"));
     QVERIFY(!ok->isEnabled());
+    keep_picture("light_dialog_error", dialog);
     dialog.findChild<QLineEdit*>("colour")->setText("#123456");
     dialog.findChild<QDoubleSpinBox*>("width")->setValue(0.0);
     QVERIFY(dialog.validation_error().startsWith("Area size"));

@@ -97,9 +97,9 @@ LightDialog::LightDialog(QWidget* parent) : QDialog(parent) {
   size_row_ = new QWidget;
   auto* size_layout = new QHBoxLayout(size_row_);
   size_layout->setContentsMargins(0, 0, 0, 0);
-  size_layout->addWidget(width_);
-  size_layout->addWidget(new QLabel(QStringLiteral("\u00d7")));
-  size_layout->addWidget(height_);
+  size_layout->addWidget(width_, 1);
+  size_layout->addWidget(new QLabel(QStringLiteral("\u00d7")), 0);
+  size_layout->addWidget(height_, 1);
   form_->addRow(tr("Area &size"), size_row_);
   radius_ = spin_box("radius", 0.0, 10.0, 3, tr(" m"));
   radius_->setToolTip(tr("0: a hard point; larger: softer shadows"));
