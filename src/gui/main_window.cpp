@@ -1,6 +1,5 @@
 #include "gui/main_window.h"
 
-#include <QApplication>
 #include <QCloseEvent>
 #include <QDoubleSpinBox>
 #include <QFileDialog>

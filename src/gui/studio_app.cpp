@@ -8,7 +8,6 @@
 #include <cstdio>
 
 #include "gui/main_window.h"
-#include "gui/photo_view.h"
 #include "io/atomic_file.h"
 
 namespace relight::gui {
