@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 EXAMPLE ?= examples/room
 
-.PHONY: deps build demo test bench clean
+.PHONY: deps build demo demo-gui test bench clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -21,6 +21,11 @@ demo: build
 	    --analysis out/demo/analysis -o out/demo/evening.exr
 	@echo "demo: re-lit image in out/demo/evening.exr and out/demo/evening.png;"
 	@echo "      recovered albedo in out/demo/analysis/albedo.png"
+
+# relight studio on the example room (analysed on first open, then cached in
+# $(EXAMPLE)/scene.analysis/).
+demo-gui: build
+	$(BUILD)/src/gui/relight-studio $(EXAMPLE)/scene.json
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -1,0 +1,84 @@
+// relight studio's own cost on top of the relighting session: turning a
+// session frame into the picture on screen (exposure, sRGB, 8 bits), and
+// redrawing the geometry view while it orbits (the mesh, back to front with
+// QPainter). On the reference scene `bookcase` where ../shared/scenes holds
+// it (RELIGHT_SCENES overrides), else on the example room. Offscreen: no
+// display needed. Results: docs/benchmarks.md, "relight studio".
+#include <benchmark/benchmark.h>
+
+#include <QApplication>
+#include <QImage>
+#include <cstdio>
+#include <filesystem>
+
+#include "analysis/strategy.h"
+#include "gui/geometry_view.h"
+#include "gui/tone_map.h"
+#include "io/scene_io.h"
+#include "room_scene.h"
+
+using namespace relight;
+using namespace relight::gui;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::shared_ptr<StudioScene> bench_scene() {
+  auto s = std::make_shared<StudioScene>();
+  fs::path folder = fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes" / "bookcase";
+  if (const char* env = std::getenv("RELIGHT_SCENES")) folder = fs::path(env) / "bookcase";
+  if (fs::exists(folder / "scene.json")) {
+    s->scene = load_scene(folder / "scene.json");
+  } else {
+    s->scene = example::room_scene(640, 480);
+    s->scene.photo = Image(640, 480, Vec3::Constant(0.2f));
+  }
+  std::fprintf(stderr, "studio_bench: %zu triangles\n", s->scene.mesh.triangles.size());
+  s->rays = std::make_unique<RayScene>(s->scene.mesh);
+  // A quick analysis: the view's speed does not depend on the albedo.
+  AnalysisOptions options;
+  options.strategy = Strategy::lights;
+  options.paths_per_pixel = 2;
+  options.interreflection = false;
+  s->gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s->scene, *s->rays, options));
+  s->analysis = analyze(s->scene, *s->rays, *s->gbuffer, options, Progress::silent());
+  return s;
+}
+
+void BM_DisplayFrame(benchmark::State& state) {
+  const Image frame(int(state.range(0)), int(state.range(1)), Vec3(0.3f, 0.2f, 0.1f));
+  for (auto _ : state) benchmark::DoNotOptimize(to_qimage(frame, 0.5f));
+  state.SetItemsProcessed(state.iterations() * frame.width * frame.height);
+}
+BENCHMARK(BM_DisplayFrame)->Args({640, 480})->Args({1280, 720})->Unit(benchmark::kMillisecond);
+
+void BM_GeometryViewOrbit(benchmark::State& state) {
+  static const std::shared_ptr<StudioScene> scene = bench_scene();
+  SessionOptions options;
+  options.settle = std::chrono::hours(1);  // no refinement running beside the measurement
+  LightingDocument document(scene, rig_from_scene(scene->scene), options);
+  document.session().wait_for_edit(1);
+  GeometryView view;
+  view.resize(int(state.range(0)), int(state.range(1)));
+  view.set_document(&document);
+  QImage target(view.size(), QImage::Format_RGB32);
+  const float distance = 1.3f * scene->scene.mesh.bounds().diagonal().norm();
+  float yaw = 0.0f;
+  for (auto _ : state) {
+    view.set_orbit(yaw += 1.0f, 35.0f, distance);  // every frame redraws the mesh
+    view.render(&target);
+  }
+  state.counters["triangles"] = double(scene->scene.mesh.triangles.size());
+}
+BENCHMARK(BM_GeometryViewOrbit)->Args({420, 320})->Args({800, 600})->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  qputenv("QT_QPA_PLATFORM", "offscreen");
+  QApplication app(argc, argv);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

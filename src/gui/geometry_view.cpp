@@ -1,0 +1,313 @@
+#include "gui/geometry_view.h"
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QPainter>
+#include <QWheelEvent>
+#include <algorithm>
+#include <cmath>
+
+namespace relight::gui {
+
+namespace {
+
+constexpr float kFieldOfViewDeg = 45.0f;
+constexpr float kPickRadius = 10.0f;  // pixels
+constexpr float kLargeStep = 10.0f;   // Shift
+
+// 1, 2 or 5 times a power of ten, the nearest at or below `x`; a negative
+// power divides, so that 0.05 is the float nearest 0.05.
+float nice_step(float x) {
+  const int exponent = int(std::floor(std::log10(x)));
+  const auto times_decade = [exponent](float m) {
+    return exponent >= 0 ? m * std::pow(10.0f, float(exponent)) : m / std::pow(10.0f, float(-exponent));
+  };
+  for (float m : {5.0f, 2.0f})
+    if (x >= times_decade(m)) return times_decade(m);
+  return times_decade(1.0f);
+}
+
+Vec3 any_perpendicular(const Vec3& n) {
+  Vec3 a, b;
+  orthonormal_basis(n, a, b);
+  return a;
+}
+
+QColor dot_colour(bool selected, bool enabled) {
+  if (selected) return QColor(220, 40, 40);
+  return enabled ? QColor(40, 110, 230) : QColor(240, 200, 30);
+}
+
+}  // namespace
+
+GeometryView::GeometryView(QWidget* parent) : QWidget(parent) {
+  setFocusPolicy(Qt::StrongFocus);
+  setMouseTracking(false);
+  setAttribute(Qt::WA_OpaquePaintEvent);
+  setToolTip(tr("Click a light to select it, drag it to move it; drag elsewhere to orbit, wheel to zoom.\n"
+                "Arrows: up/down and sideways; Home/End: forwards/backwards; Shift: 10\u00d7 further."));
+}
+
+void GeometryView::set_document(LightingDocument* document) {
+  if (document_) disconnect(document_, nullptr, this, nullptr);
+  document_ = document;
+  selected_ = -1;
+  if (document_) {
+    const Scene& scene = document_->scene();
+    world_up_ = scene.camera.spec().up.normalized();
+    const Vec3 forward = scene.camera.forward();
+    const Vec3 horizontal = forward - forward.dot(world_up_) * world_up_;
+    reference_heading_ = horizontal.norm() > 1e-4f ? Vec3(horizontal.normalized()) : any_perpendicular(world_up_);
+    const Eigen::AlignedBox3f bounds = scene.mesh.bounds();
+    centre_ = bounds.isEmpty() ? scene.camera.spec().look_at : Vec3(bounds.center());
+    scene_size_ = bounds.isEmpty() ? 1.0f : std::max(bounds.diagonal().norm(), 1e-3f);
+    move_step_ = nice_step(scene_size_ / 100.0f);
+    for (auto signal : {&LightingDocument::lightChanged, &LightingDocument::lightInserted,
+                        &LightingDocument::lightRemoved})
+      connect(document_, signal, this, qOverload<>(&QWidget::update));
+    connect(document_, &LightingDocument::rigReset, this, qOverload<>(&QWidget::update));
+    connect(document_, &QObject::destroyed, this, [this] { set_document(nullptr); });
+  }
+  reset_orbit();
+}
+
+void GeometryView::set_selected(int index) {
+  selected_ = index;
+  update();
+}
+
+void GeometryView::set_orbit(float yaw_deg, float pitch_deg, float distance) {
+  yaw_deg_ = yaw_deg;
+  pitch_deg_ = std::clamp(pitch_deg, -89.0f, 89.0f);
+  distance_ = std::max(distance, 1e-3f * scene_size_);
+  geometry_changed();
+}
+
+void GeometryView::reset_orbit() { set_orbit(0.0f, 35.0f, 1.3f * scene_size_); }
+
+Vec3 GeometryView::heading() const {
+  const float yaw = radians(yaw_deg_);
+  const Vec3 side = world_up_.cross(reference_heading_);
+  return (std::cos(yaw) * reference_heading_ + std::sin(yaw) * side).normalized();
+}
+
+GeometryView::MoveFrame GeometryView::move_frame() const {
+  const Vec3 forward = heading();
+  return {forward.cross(world_up_).normalized(), world_up_, forward};
+}
+
+std::optional<Vec3> GeometryView::key_move(int key, Qt::KeyboardModifiers modifiers) const {
+  const MoveFrame f = move_frame();
+  const float step = modifiers & Qt::ShiftModifier ? kLargeStep * move_step_ : move_step_;
+  switch (key) {
+    case Qt::Key_Up: return Vec3(step * f.up);
+    case Qt::Key_Down: return Vec3(-step * f.up);
+    case Qt::Key_Right: return Vec3(step * f.right);
+    case Qt::Key_Left: return Vec3(-step * f.right);
+    case Qt::Key_Home: return Vec3(step * f.forward);
+    case Qt::Key_End: return Vec3(-step * f.forward);
+    default: return std::nullopt;
+  }
+}
+
+GeometryView::Eye GeometryView::eye() const {
+  const float pitch = radians(pitch_deg_);
+  Eye e;
+  e.forward = (std::cos(pitch) * heading() - std::sin(pitch) * world_up_).normalized();
+  e.position = centre_ - distance_ * e.forward;
+  e.right = e.forward.cross(world_up_).normalized();
+  e.up = e.right.cross(e.forward);
+  e.focal = 0.5f * float(height()) / std::tan(0.5f * radians(kFieldOfViewDeg));
+  return e;
+}
+
+std::optional<QPointF> GeometryView::project(const Vec3& p) const {
+  const Eye e = eye();
+  const Vec3 d = p - e.position;
+  const float z = d.dot(e.forward);
+  if (z < 1e-3f * scene_size_) return std::nullopt;
+  return QPointF(0.5 * width() + e.focal * d.dot(e.right) / z, 0.5 * height() - e.focal * d.dot(e.up) / z);
+}
+
+Vec3 GeometryView::marker_position(const Light& light) const {
+  if (light.type != LightType::directional) return light.position;
+  return centre_ - 0.45f * scene_size_ * light.direction.normalized();
+}
+
+void GeometryView::geometry_changed() {
+  mesh_image_ = QImage();
+  update();
+}
+
+void GeometryView::resizeEvent(QResizeEvent*) { mesh_image_ = QImage(); }
+
+void GeometryView::draw_mesh() {
+  mesh_image_ = QImage(size(), QImage::Format_RGB32);
+  mesh_image_.fill(QColor(46, 48, 52));
+  if (!document_) return;
+  const Scene& scene = document_->scene();
+  const Eye e = eye();
+  const Vec3 key = (0.4f * e.right + 0.8f * world_up_ - 0.3f * e.forward).normalized();
+  struct Face {
+    float depth;
+    QPolygonF polygon;
+    QColor colour;
+  };
+  std::vector<Face> faces;
+  faces.reserve(scene.mesh.triangles.size());
+  for (const auto& t : scene.mesh.triangles) {
+    const Vec3 &a = scene.mesh.positions[t[0]], &b = scene.mesh.positions[t[1]], &c = scene.mesh.positions[t[2]];
+    const Vec3 centroid = (a + b + c) / 3.0f;
+    Vec3 n = (b - a).cross(c - a);
+    if (n.norm() == 0.0f) continue;
+    n.normalize();
+    // The side the photo's camera sees is the front; surfaces showing this
+    // view their back are left out, so walls do not hide the room (a cutaway).
+    if (n.dot(scene.camera.position() - centroid) < 0.0f) n = -n;
+    if (n.dot(e.position - centroid) <= 0.0f) continue;
+    QPolygonF polygon;
+    for (const Vec3* p : {&a, &b, &c}) {
+      const auto q = project(*p);
+      if (!q) break;
+      polygon << *q;
+    }
+    if (polygon.size() != 3) continue;
+    const int shade = int(90.0f + 130.0f * std::abs(n.dot(key)));
+    faces.push_back({(centroid - e.position).dot(e.forward), polygon, QColor(shade, shade, int(shade * 0.97f))});
+  }
+  std::sort(faces.begin(), faces.end(), [](const Face& x, const Face& y) { return x.depth > y.depth; });
+  QPainter painter(&mesh_image_);
+  painter.setRenderHint(QPainter::Antialiasing);
+  for (const Face& f : faces) {
+    painter.setPen(QPen(f.colour, 0.8));
+    painter.setBrush(f.colour);
+    painter.drawPolygon(f.polygon);
+  }
+}
+
+void GeometryView::draw_camera(QPainter& painter) const {
+  const Camera& camera = document_->scene().camera;
+  const float depth = 0.06f * scene_size_;
+  const float w = float(camera.width()), h = float(camera.height());
+  std::vector<QPointF> corners;
+  for (const Vec2& c : {Vec2(0, 0), Vec2(w, 0), Vec2(w, h), Vec2(0, h)})
+    if (const auto q = project(camera.position() + depth / camera.ray_direction(c.x(), c.y()).dot(camera.forward()) *
+                                                       camera.ray_direction(c.x(), c.y())))
+      corners.push_back(*q);
+  const auto apex = project(camera.position());
+  if (!apex || corners.size() != 4) return;
+  painter.setPen(QPen(QColor(235, 235, 235), 1.2));
+  painter.setBrush(Qt::NoBrush);
+  for (const QPointF& c : corners) painter.drawLine(*apex, c);
+  painter.drawPolygon(corners.data(), 4);
+  painter.drawText(*apex + QPointF(6, -6), tr("camera"));
+}
+
+void GeometryView::draw_lights(QPainter& painter) const {
+  for (int i = 0; i < document_->light_count(); ++i) {
+    const Light& light = document_->light(i);
+    const Vec3 at = marker_position(light);
+    const auto p = project(at);
+    if (!p) continue;
+    const QColor colour = dot_colour(i == selected_, light.enabled);
+    if (light.type != LightType::point) {
+      // Which way it shines: a short line towards where the light goes.
+      const Vec3 towards = at + 0.08f * scene_size_ * light.direction.normalized();
+      if (const auto q = project(towards)) {
+        painter.setPen(QPen(colour, 2.0));
+        painter.drawLine(*p, *q);
+      }
+    }
+    painter.setPen(QPen(QColor(20, 20, 20), 1.5));
+    painter.setBrush(colour);
+    const double r = i == selected_ ? 7.5 : 6.0;
+    painter.drawEllipse(*p, r, r);
+    painter.setPen(QColor(240, 240, 240));
+    painter.drawText(*p + QPointF(10, 4), QString::fromStdString(light.name));
+  }
+}
+
+void GeometryView::paintEvent(QPaintEvent*) {
+  if (mesh_image_.size() != size()) draw_mesh();
+  QPainter painter(this);
+  painter.drawImage(0, 0, mesh_image_);
+  if (!document_) {
+    painter.setPen(QColor(200, 200, 200));
+    painter.drawText(rect(), Qt::AlignCenter, tr("Open a scene (File \u203a Open Scene\u2026)"));
+    return;
+  }
+  painter.setRenderHint(QPainter::Antialiasing);
+  draw_camera(painter);
+  draw_lights(painter);
+  if (hasFocus()) {
+    painter.setPen(QPen(palette().highlight().color(), 2));
+    painter.setBrush(Qt::NoBrush);
+    painter.drawRect(rect().adjusted(1, 1, -1, -1));
+  }
+}
+
+int GeometryView::light_at(const QPointF& point) const {
+  int best = -1;
+  double best_distance = kPickRadius;
+  for (int i = 0; document_ && i < document_->light_count(); ++i)
+    if (const auto p = project(marker_position(document_->light(i)))) {
+      const double d = std::hypot(p->x() - point.x(), p->y() - point.y());
+      if (d <= best_distance) best = i, best_distance = d;
+    }
+  return best;
+}
+
+void GeometryView::mousePressEvent(QMouseEvent* event) {
+  if (event->button() != Qt::LeftButton || !document_) return;
+  setFocus();
+  drag_start_ = event->position();
+  const int hit = light_at(event->position());
+  if (hit >= 0) {
+    emit lightClicked(hit);
+    drag_light_ = document_->light(hit);
+    // A sun has no position: it is selected, not dragged.
+    drag_ = drag_light_.type == LightType::directional ? Drag::none : Drag::light;
+  } else {
+    drag_ = Drag::orbit;
+    drag_yaw_ = yaw_deg_;
+    drag_pitch_ = pitch_deg_;
+  }
+}
+
+void GeometryView::mouseMoveEvent(QMouseEvent* event) {
+  const QPointF d = event->position() - drag_start_;
+  if (drag_ == Drag::orbit) {
+    set_orbit(drag_yaw_ - 0.4f * float(d.x()), drag_pitch_ + 0.4f * float(d.y()), distance_);
+  } else if (drag_ == Drag::light && selected_ >= 0) {
+    // In the plane through the light facing the view: pixels to metres at its depth.
+    const Eye e = eye();
+    const float metres_per_pixel = std::max((drag_light_.position - e.position).dot(e.forward), 0.0f) / e.focal;
+    Light moved = drag_light_;
+    moved.position += metres_per_pixel * (float(d.x()) * e.right - float(d.y()) * e.up);
+    emit lightDragged(selected_, moved);
+  }
+}
+
+void GeometryView::mouseReleaseEvent(QMouseEvent* event) {
+  if (drag_ == Drag::light && selected_ >= 0 && event->position() != drag_start_)
+    emit lightDropped(selected_, drag_light_, document_->light(selected_));
+  drag_ = Drag::none;
+}
+
+void GeometryView::wheelEvent(QWheelEvent* event) {
+  set_orbit(yaw_deg_, pitch_deg_, distance_ * std::pow(0.9f, float(event->angleDelta().y()) / 120.0f));
+}
+
+void GeometryView::keyPressEvent(QKeyEvent* event) {
+  if (event->key() == Qt::Key_Delete) {
+    emit deleteRequested();
+    return;
+  }
+  if (const auto delta = key_move(event->key(), event->modifiers())) {
+    emit moveRequested(*delta);
+    return;
+  }
+  QWidget::keyPressEvent(event);
+}
+
+}  // namespace relight::gui

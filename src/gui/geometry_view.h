@@ -1,0 +1,97 @@
+// GeometryView (thesis 6.2.1): the scene's mesh seen from an orbiting
+// viewpoint, with the photo's camera and every light drawn as a dot — red
+// the selected one, blue a shown light, yellow a switched-off one. Drawn
+// with QPainter (flat-shaded triangles, back to front), so it needs no
+// OpenGL. Mouse: click a dot to select it, drag it to move the light in the
+// plane facing the view, drag elsewhere to orbit, wheel to zoom. Keys
+// (thesis 6.3): arrows move the selected light up/down and sideways,
+// Home/End forwards/backwards in this view's frame, Shift ten times
+// further; Delete deletes. The view only asks (signals); the main window
+// makes the edits.
+#pragma once
+
+#include <QImage>
+#include <QWidget>
+#include <optional>
+
+#include "gui/lighting_document.h"
+
+namespace relight::gui {
+
+class GeometryView : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit GeometryView(QWidget* parent = nullptr);
+  void set_document(LightingDocument* document);
+  void set_selected(int index);
+  int selected() const { return selected_; }
+
+  // The orbit: degrees about the world up from the photo camera's heading,
+  // degrees looking down, metres from the scene's centre.
+  void set_orbit(float yaw_deg, float pitch_deg, float distance);
+  void reset_orbit();
+
+  // The frame the keys move lights in: world up, and this view's heading
+  // made horizontal (forward) with its horizontal right.
+  struct MoveFrame {
+    Vec3 right, up, forward;
+  };
+  MoveFrame move_frame() const;
+  // Metres one key press moves a light (Shift: ten times this): about 1 % of
+  // the scene's size, rounded to 1, 2 or 5 times a power of ten.
+  float move_step() const { return move_step_; }
+  // The move of a key press (arrows, Home, End, with Shift), if it is one.
+  std::optional<Vec3> key_move(int key, Qt::KeyboardModifiers modifiers) const;
+
+  // Where a world point appears in the widget, if in front of the eye.
+  std::optional<QPointF> project(const Vec3& p) const;
+  // Where light `index`'s dot is drawn (a sun's: out along where it shines from).
+  Vec3 marker_position(const Light& light) const;
+
+  QSize sizeHint() const override { return {420, 320}; }
+  QSize minimumSizeHint() const override { return {200, 150}; }
+
+ signals:
+  void lightClicked(int index);
+  // While a dot is dragged: the light as it now is; at the release, before and after.
+  void lightDragged(int index, const relight::Light& light);
+  void lightDropped(int index, const relight::Light& before, const relight::Light& after);
+  void moveRequested(const relight::Vec3& delta);
+  void deleteRequested();
+
+ protected:
+  void paintEvent(QPaintEvent* event) override;
+  void resizeEvent(QResizeEvent* event) override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+  void keyPressEvent(QKeyEvent* event) override;
+
+ private:
+  struct Eye {
+    Vec3 position, forward, right, up;
+    float focal = 1.0f;  // pixels
+  };
+  Eye eye() const;
+  Vec3 heading() const;  // horizontal, unit
+  void draw_mesh();      // into mesh_image_
+  void draw_camera(QPainter& painter) const;
+  void draw_lights(QPainter& painter) const;
+  int light_at(const QPointF& point) const;
+  void geometry_changed();
+
+  LightingDocument* document_ = nullptr;
+  int selected_ = -1;
+  Vec3 world_up_ = Vec3::UnitZ(), reference_heading_ = Vec3::UnitY(), centre_ = Vec3::Zero();
+  float scene_size_ = 1.0f, move_step_ = 0.01f;
+  float yaw_deg_ = 0.0f, pitch_deg_ = 35.0f, distance_ = 1.0f;
+  QImage mesh_image_;  // the shaded mesh for the current orbit and size
+  enum class Drag { none, orbit, light } drag_ = Drag::none;
+  QPointF drag_start_;
+  float drag_yaw_ = 0.0f, drag_pitch_ = 0.0f;
+  Light drag_light_;
+};
+
+}  // namespace relight::gui

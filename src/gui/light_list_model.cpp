@@ -1,0 +1,115 @@
+#include "gui/light_list_model.h"
+
+#include <QIcon>
+#include <QPainter>
+#include <QPainterPath>
+#include <QPixmap>
+
+#include "gui/tone_map.h"
+
+namespace relight::gui {
+
+namespace {
+
+QString type_name(LightType type) { return type == LightType::directional ? QStringLiteral("sun") : to_string(type); }
+
+// An eye, open with an iris in the light's colour, or closed (switched off).
+QIcon eye_icon(const Light& light) {
+  constexpr int size = 20;
+  QPixmap pixmap(size, size);
+  pixmap.fill(Qt::transparent);
+  QPainter p(&pixmap);
+  p.setRenderHint(QPainter::Antialiasing);
+  QPainterPath lid;
+  lid.moveTo(2, 10);
+  lid.quadTo(10, 1, 18, 10);
+  if (light.enabled) {
+    lid.quadTo(10, 19, 2, 10);
+    p.setPen(QPen(QColor(60, 60, 60), 1.4));
+    p.setBrush(Qt::white);
+    p.drawPath(lid);
+    p.setBrush(display_colour(light.color));
+    p.drawEllipse(QPointF(10, 10), 4, 4);
+    p.setBrush(Qt::black);
+    p.drawEllipse(QPointF(10, 10), 1.5, 1.5);
+  } else {
+    p.setPen(QPen(QColor(150, 150, 150), 1.4));
+    p.setBrush(Qt::NoBrush);
+    QPainterPath closed;
+    closed.moveTo(2, 9);
+    closed.quadTo(10, 16, 18, 9);
+    p.drawPath(closed);
+    for (int x : {6, 10, 14}) p.drawLine(QPointF(x, 12.5), QPointF(x, 15.5));
+  }
+  return QIcon(pixmap);
+}
+
+}  // namespace
+
+QString light_summary(const Light& light) {
+  const QString name = QString::fromStdString(light.name);
+  if (light.type == LightType::directional)
+    return QStringLiteral("%1 \u2014 sun, %2 W/m\u00b2").arg(name).arg(double(light.irradiance), 0, 'g', 4);
+  return QStringLiteral("%1 \u2014 %2, %3 W").arg(name, type_name(light.type)).arg(double(light.power), 0, 'g', 4);
+}
+
+LightListModel::LightListModel(QObject* parent) : QAbstractListModel(parent) {}
+
+void LightListModel::set_document(LightingDocument* document) {
+  beginResetModel();
+  if (document_) disconnect(document_, nullptr, this, nullptr);
+  document_ = document;
+  if (document_) {
+    connect(document_, &LightingDocument::lightChanged, this, [this](int row) {
+      emit dataChanged(index(row), index(row));
+    });
+    // Lights come and go after the document has changed: the list is read
+    // again (the main window restores the selection).
+    for (auto signal : {&LightingDocument::lightInserted, &LightingDocument::lightRemoved})
+      connect(document_, signal, this, [this] {
+        beginResetModel();
+        endResetModel();
+      });
+    connect(document_, &LightingDocument::rigReset, this, [this] {
+      beginResetModel();
+      endResetModel();
+    });
+    connect(document_, &QObject::destroyed, this, [this] { set_document(nullptr); });
+  }
+  endResetModel();
+}
+
+int LightListModel::rowCount(const QModelIndex& parent) const {
+  return parent.isValid() || !document_ ? 0 : document_->light_count();
+}
+
+QVariant LightListModel::data(const QModelIndex& index, int role) const {
+  if (!document_ || !index.isValid() || index.row() >= document_->light_count()) return {};
+  const Light& light = document_->light(index.row());
+  switch (role) {
+    case Qt::DisplayRole:
+      return light_summary(light);
+    case Qt::DecorationRole:
+      return eye_icon(light);
+    case Qt::CheckStateRole:
+      return light.enabled ? Qt::Checked : Qt::Unchecked;
+    case Qt::ToolTipRole:
+      return light.enabled ? QStringLiteral("Shown: untick to switch the light off (it stays in the rig)")
+                           : QStringLiteral("Switched off: tick to show it again");
+    default:
+      return {};
+  }
+}
+
+bool LightListModel::setData(const QModelIndex& index, const QVariant& value, int role) {
+  if (!document_ || role != Qt::CheckStateRole || !index.isValid()) return false;
+  const bool enabled = value.toInt() == Qt::Checked;
+  if (enabled != document_->light(index.row()).enabled) emit enabledToggleRequested(index.row(), enabled);
+  return true;
+}
+
+Qt::ItemFlags LightListModel::flags(const QModelIndex& index) const {
+  return QAbstractListModel::flags(index) | Qt::ItemIsUserCheckable;
+}
+
+}  // namespace relight::gui

@@ -1,0 +1,690 @@
+#include "gui/main_window.h"
+
+#include <QCloseEvent>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QListView>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSettings>
+#include <QSlider>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QToolButton>
+#include <QVBoxLayout>
+#include <cmath>
+
+#include "core/error.h"
+#include "gui/geometry_view.h"
+#include "gui/light_commands.h"
+#include "gui/light_dialog.h"
+#include "gui/light_list_model.h"
+#include "gui/photo_view.h"
+#include "gui/tone_map.h"
+#include "io/image_io.h"
+#include "io/scene_io.h"
+
+namespace relight::gui {
+
+namespace {
+
+constexpr int kMaxRecent = 8;
+const QString kRecentScenes = QStringLiteral("recent_scenes");
+const QString kRecentRigs = QStringLiteral("recent_rigs");
+
+QString vec3_text(const Vec3& v, const QString& unit) {
+  return QStringLiteral("%1, %2, %3%4")
+      .arg(double(v.x()), 0, 'f', 3)
+      .arg(double(v.y()), 0, 'f', 3)
+      .arg(double(v.z()), 0, 'f', 3)
+      .arg(unit);
+}
+
+QLabel* detail_label(const QString& name) {
+  auto* label = new QLabel(QStringLiteral("\u2014"));
+  label->setObjectName(name);
+  label->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  return label;
+}
+
+// The view size for a photo: its own up to max_width, else scaled down.
+void choose_view_size(const Image& photo, int max_width, SessionOptions& options) {
+  if (photo.width <= max_width) return;
+  options.width = max_width;
+  options.height = std::max(1, int(std::lround(double(photo.height) * max_width / photo.width)));
+}
+
+}  // namespace
+
+StudioOptions default_studio_options() {
+  StudioOptions options;
+  options.session.backend = Backend::gl;
+  return options;
+}
+
+MainWindow::MainWindow(StudioOptions options, QWidget* parent) : QMainWindow(parent), options_(options) {
+  auto* splitter = new QSplitter(Qt::Horizontal);
+  splitter->addWidget(make_left_panel());
+  splitter->addWidget(make_right_panel());
+  splitter->setStretchFactor(0, 0);
+  splitter->setStretchFactor(1, 1);
+  splitter->setSizes({430, 900});
+  setCentralWidget(splitter);
+  make_menus();
+
+  task_label_ = new QLabel;
+  task_progress_ = new QProgressBar;
+  task_progress_->setRange(0, 100);
+  task_progress_->setMaximumWidth(220);
+  task_cancel_ = new QToolButton;
+  task_cancel_->setText(tr("Cancel"));
+  for (QWidget* w : {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(task_progress_),
+                     static_cast<QWidget*>(task_cancel_)}) {
+    statusBar()->addPermanentWidget(w);
+    w->hide();
+  }
+  connect(task_cancel_, &QToolButton::clicked, &task_, &BackgroundTask::cancel);
+  connect(&task_, &BackgroundTask::progressed, task_progress_, &QProgressBar::setValue);
+
+  connect(&undo_, &QUndoStack::cleanChanged, this, [this] { update_title(); });
+  connect(&frame_timer_, &QTimer::timeout, this, [this] { refresh_frame(); });
+  frame_timer_.start(33);
+  update_actions();
+  update_title();
+  resize(1500, 900);
+}
+
+MainWindow::~MainWindow() {
+  frame_timer_.stop();
+  task_.cancel();
+  task_.wait();
+  undo_.clear();
+  model_->set_document(nullptr);
+  geometry_->set_document(nullptr);
+}
+
+QWidget* MainWindow::make_left_panel() {
+  geometry_ = new GeometryView;
+  geometry_->setObjectName("geometry_view");
+  connect(geometry_, &GeometryView::lightClicked, this, &MainWindow::select_light);
+  connect(geometry_, &GeometryView::lightDragged, this,
+          [this](int index, const Light& light) { document_->set_light(index, light); });
+  connect(geometry_, &GeometryView::lightDropped, this, [this](int index, const Light& before, const Light& after) {
+    undo_.push(new EditLightCommand(*document_, index, before, after, tr("Drag light")));
+  });
+  connect(geometry_, &GeometryView::moveRequested, this, &MainWindow::move_selected_light);
+  connect(geometry_, &GeometryView::deleteRequested, this, [this] {
+    if (selected_ >= 0) delete_light(selected_);
+  });
+
+  model_ = new LightListModel(this);
+  connect(model_, &LightListModel::enabledToggleRequested, this, &MainWindow::set_light_enabled);
+  list_ = new QListView;
+  list_->setObjectName("light_list");
+  list_->setModel(model_);
+  list_->setIconSize(QSize(20, 20));
+  list_->setSpacing(2);
+  list_->setFocusPolicy(Qt::NoFocus);  // the keys move lights (geometry view), not the list's cursor
+  list_->setSelectionMode(QAbstractItemView::SingleSelection);
+  connect(list_->selectionModel(), &QItemSelectionModel::currentChanged, this,
+          [this](const QModelIndex& current) { select_light(current.isValid() ? current.row() : -1); });
+  connect(list_, &QListView::doubleClicked, this, [this] { change_light_dialog(); });
+
+  new_button_ = new QPushButton(tr("&New\u2026"));
+  change_button_ = new QPushButton(tr("&Change\u2026"));
+  delete_button_ = new QPushButton(tr("&Delete"));
+  new_button_->setToolTip(tr("Add a light (Insert)"));
+  change_button_->setToolTip(tr("Edit the selected light (Enter, or double-click it)"));
+  delete_button_->setToolTip(tr("Delete the selected light (Del)"));
+  connect(new_button_, &QPushButton::clicked, this, &MainWindow::new_light_dialog);
+  connect(change_button_, &QPushButton::clicked, this, &MainWindow::change_light_dialog);
+  connect(delete_button_, &QPushButton::clicked, this, [this] { delete_light(selected_); });
+  auto* buttons = new QHBoxLayout;
+  buttons->addWidget(new_button_);
+  buttons->addWidget(change_button_);
+  buttons->addWidget(delete_button_);
+
+  auto* lights = new QGroupBox(tr("Lights"));
+  auto* lights_layout = new QVBoxLayout(lights);
+  lights_layout->addWidget(list_, 1);
+  lights_layout->addLayout(buttons);
+
+  detail_type_ = detail_label("detail_type");
+  detail_colour_ = detail_label("detail_colour");
+  detail_position_ = detail_label("detail_position");
+  detail_direction_ = detail_label("detail_direction");
+  detail_power_ = detail_label("detail_power");
+  auto* details = new QGroupBox(tr("Selected light"));
+  auto* form = new QFormLayout(details);
+  form->setLabelAlignment(Qt::AlignRight);
+  form->addRow(tr("Type"), detail_type_);
+  form->addRow(tr("Colour"), detail_colour_);
+  form->addRow(tr("Position"), detail_position_);
+  form->addRow(tr("Direction"), detail_direction_);
+  form->addRow(tr("Power"), detail_power_);
+
+  auto* splitter = new QSplitter(Qt::Vertical);
+  splitter->addWidget(geometry_);
+  splitter->addWidget(lights);
+  splitter->addWidget(details);
+  splitter->setStretchFactor(0, 3);
+  splitter->setStretchFactor(1, 2);
+  splitter->setStretchFactor(2, 0);
+  splitter->setChildrenCollapsible(false);
+  auto* panel = new QWidget;
+  auto* layout = new QVBoxLayout(panel);
+  layout->setContentsMargins(6, 6, 2, 6);
+  layout->addWidget(splitter);
+  return panel;
+}
+
+QWidget* MainWindow::make_right_panel() {
+  photo_ = new PhotoView;
+  photo_->setObjectName("photo_view");
+  connect(photo_, &PhotoView::photoClicked, this, &MainWindow::place_selected_light);
+
+  split_ = new QSlider(Qt::Horizontal);
+  split_->setObjectName("split");
+  split_->setRange(0, 100);
+  split_->setToolTip(tr("Drag right to show the photo as taken left of a line, the re-lit photo right of it"));
+  connect(split_, &QSlider::valueChanged, this, [this](int value) { photo_->set_split(value / 100.0); });
+  exposure_ = new QDoubleSpinBox;
+  exposure_->setObjectName("exposure");
+  exposure_->setRange(-10.0, 10.0);
+  exposure_->setSingleStep(0.5);
+  exposure_->setDecimals(1);
+  exposure_->setSuffix(tr(" EV"));
+  exposure_->setToolTip(tr("Display exposure in stops (PNG export uses it too)"));
+  connect(exposure_, &QDoubleSpinBox::valueChanged, this, [this](double ev) { photo_->set_exposure(float(ev)); });
+  ambient_ = new QDoubleSpinBox;
+  ambient_->setObjectName("ambient");
+  ambient_->setRange(0.0, 20.0);
+  ambient_->setSingleStep(0.1);
+  ambient_->setDecimals(2);
+  ambient_->setPrefix(QStringLiteral("\u00d7 "));
+  ambient_->setToolTip(tr("Light from the environment (probes, background) and what is outside the geometry"));
+  connect(ambient_, &QDoubleSpinBox::valueChanged, this, [this](double scale) {
+    if (document_ && float(scale) != document_->rig().environment_scale)
+      undo_.push(new EnvironmentScaleCommand(*document_, document_->rig().environment_scale, float(scale)));
+  });
+  quality_ = new QLabel;
+  quality_->setObjectName("quality");
+  quality_->setMinimumWidth(220);
+  quality_->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
+
+  auto* controls = new QHBoxLayout;
+  controls->setSpacing(10);
+  controls->addWidget(new QLabel(tr("Compare with photo")));
+  controls->addWidget(split_, 1);
+  controls->addSpacing(16);
+  controls->addWidget(new QLabel(tr("Exposure")));
+  controls->addWidget(exposure_);
+  controls->addSpacing(16);
+  controls->addWidget(new QLabel(tr("Ambient")));
+  controls->addWidget(ambient_);
+  controls->addSpacing(16);
+  controls->addWidget(quality_);
+
+  auto* panel = new QWidget;
+  auto* layout = new QVBoxLayout(panel);
+  layout->setContentsMargins(2, 6, 6, 6);
+  layout->addWidget(photo_, 1);
+  layout->addLayout(controls);
+  return panel;
+}
+
+void MainWindow::make_menus() {
+  QMenu* file = menuBar()->addMenu(tr("&File"));
+  file->addAction(tr("&Open Scene\u2026"), QKeySequence::Open, this, [this] {
+    if (!maybe_keep_changes()) return;
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open scene"), QFileInfo(scene_path_).path(),
+                                                      tr("Scenes (*.json)"));
+    if (!path.isEmpty()) open_scene(path);
+  });
+  QMenu* recent_scenes = file->addMenu(tr("Recent &Scenes"));
+  connect(recent_scenes, &QMenu::aboutToShow, this, [this, recent_scenes] {
+    fill_recent_menu(recent_scenes, kRecentScenes);
+  });
+  file->addSeparator();
+  open_rig_action_ = file->addAction(tr("Open &Rig\u2026"), QKeySequence(tr("Ctrl+Shift+O")), this, [this] {
+    if (!maybe_keep_changes()) return;
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open rig"), QFileInfo(scene_path_).path(),
+                                                      tr("Rigs (*.json)"));
+    if (!path.isEmpty()) open_rig(path);
+  });
+  QMenu* recent_rigs = file->addMenu(tr("Recent R&igs"));
+  connect(recent_rigs, &QMenu::aboutToShow, this, [this, recent_rigs] { fill_recent_menu(recent_rigs, kRecentRigs); });
+  save_rig_action_ = file->addAction(tr("&Save Rig"), QKeySequence::Save, this, [this] {
+    if (rig_path_.isEmpty())
+      save_rig_as_action_->trigger();
+    else
+      save_rig(rig_path_);
+  });
+  save_rig_as_action_ = file->addAction(tr("Save Rig &As\u2026"), QKeySequence::SaveAs, this, [this] {
+    const QString path = QFileDialog::getSaveFileName(
+        this, tr("Save rig"), rig_path_.isEmpty() ? QFileInfo(scene_path_).dir().filePath("rig.json") : rig_path_,
+        tr("Rigs (*.json)"));
+    if (!path.isEmpty()) save_rig(path);
+  });
+  file->addSeparator();
+  export_action_ = file->addAction(tr("&Export Image\u2026"), QKeySequence(tr("Ctrl+E")), this, [this] {
+    const QString path = QFileDialog::getSaveFileName(this, tr("Export the re-lit photo"),
+                                                      QFileInfo(scene_path_).dir().filePath("relit.exr"),
+                                                      tr("OpenEXR, linear (*.exr);;PNG, with the exposure (*.png)"));
+    if (!path.isEmpty()) export_image(path);
+  });
+  file->addSeparator();
+  file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
+
+  QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+  QAction* undo = undo_.createUndoAction(this, tr("&Undo"));
+  undo->setShortcut(QKeySequence::Undo);
+  QAction* redo = undo_.createRedoAction(this, tr("&Redo"));
+  redo->setShortcut(QKeySequence::Redo);
+  edit->addAction(undo);
+  edit->addAction(redo);
+  edit->addSeparator();
+  new_light_action_ = edit->addAction(tr("&New Light\u2026"), QKeySequence(Qt::Key_Insert), this,
+                                      &MainWindow::new_light_dialog);
+  change_light_action_ = edit->addAction(tr("&Change Light\u2026"), QKeySequence(Qt::Key_Return), this,
+                                         &MainWindow::change_light_dialog);
+  delete_light_action_ = edit->addAction(tr("&Delete Light\tDel"), this, [this] { delete_light(selected_); });
+  // Insert and Enter act where the lights are handled, not in the spin boxes.
+  for (QAction* action : {new_light_action_, change_light_action_}) {
+    action->setShortcutContext(Qt::WidgetShortcut);
+    geometry_->addAction(action);
+  }
+
+  QMenu* view = menuBar()->addMenu(tr("&View"));
+  view->addAction(tr("&Reset Geometry View"), this, [this] { geometry_->reset_orbit(); });
+}
+
+void MainWindow::run_task(const QString& label, BackgroundTask::Work work,
+                          std::function<void(const QString&)> done) {
+  task_label_->setText(label);
+  task_progress_->setValue(0);
+  for (QWidget* w : {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(task_progress_),
+                     static_cast<QWidget*>(task_cancel_)})
+    w->show();
+  auto connection = std::make_shared<QMetaObject::Connection>();
+  *connection = connect(&task_, &BackgroundTask::finished, this, [this, done, connection](const QString& error) {
+    disconnect(*connection);
+    for (QWidget* w : {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(task_progress_),
+                       static_cast<QWidget*>(task_cancel_)})
+      w->hide();
+    update_actions();
+    done(error);
+  });
+  task_.start(std::move(work));
+  update_actions();
+}
+
+void MainWindow::open_scene(const QString& scene_path, const QString& rig_path) {
+  if (busy()) return;
+  auto loaded = std::make_shared<std::shared_ptr<const StudioScene>>();
+  const AnalysisOptions analysis = options_.analysis;
+  const std::string path = scene_path.toStdString();
+  run_task(
+      tr("Analysing %1\u2026").arg(QFileInfo(scene_path).fileName()),
+      [loaded, analysis, path](Progress& progress) { *loaded = load_studio_scene(path, analysis, progress); },
+      [this, loaded, scene_path, rig_path](const QString& error) {
+        if (!error.isEmpty()) {
+          show_error(error == "cancelled" ? tr("Opening %1 was cancelled.").arg(scene_path) : error);
+          emit openFailed(error);
+          return;
+        }
+        install_scene(*loaded, scene_path, rig_path);
+        emit sceneOpened();
+      });
+}
+
+void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path,
+                               const QString& rig_path) {
+  Rig rig = rig_from_scene(scene->scene);
+  QString loaded_rig_path;
+  if (!rig_path.isEmpty()) {
+    try {
+      rig = load_rig(rig_path.toStdString());
+      loaded_rig_path = rig_path;
+    } catch (const InputError& e) {
+      show_error(QString::fromStdString(e.what()) + tr(" (the scene's own lights are used instead)"));
+    }
+  }
+  SessionOptions session = options_.session;
+  choose_view_size(scene->scene.photo, options_.max_view_width, session);
+  undo_.clear();
+  model_->set_document(nullptr);
+  geometry_->set_document(nullptr);
+  document_.reset();
+  scene_ = std::move(scene);
+  document_ = std::make_unique<LightingDocument>(scene_, rig, session);
+  scene_path_ = scene_path;
+  rig_path_ = loaded_rig_path;
+
+  model_->set_document(document_.get());
+  geometry_->set_document(document_.get());
+  connect(document_.get(), &LightingDocument::lightChanged, this, [this](int index) {
+    if (index == selected_) update_details();
+  });
+  connect(document_.get(), &LightingDocument::lightInserted, this, &MainWindow::select_light);
+  connect(document_.get(), &LightingDocument::lightRemoved, this,
+          [this](int index) { select_light(std::min(index, document_->light_count() - 1)); });
+  connect(document_.get(), &LightingDocument::rigReset, this, [this] {
+    select_light(document_->light_count() > 0 ? 0 : -1);
+    const QSignalBlocker block(ambient_);
+    ambient_->setValue(double(document_->rig().environment_scale));
+  });
+  connect(document_.get(), &LightingDocument::environmentScaleChanged, this, [this](float scale) {
+    const QSignalBlocker block(ambient_);
+    ambient_->setValue(double(scale));
+  });
+  {
+    const QSignalBlocker block(ambient_);
+    ambient_->setValue(double(rig.environment_scale));
+  }
+  photo_->set_photo(std::make_shared<const Image>(scene_->scene.photo));
+  photo_->set_relit(nullptr);
+  select_light(document_->light_count() > 0 ? 0 : -1);
+  remember(kRecentScenes, scene_path);
+  if (!rig_path_.isEmpty()) remember(kRecentRigs, rig_path_);
+  statusBar()->showMessage(
+      scene_->from_cache ? tr("Analysis read from %1").arg(QString::fromStdString(
+                               analysis_cache_folder(scene_path.toStdString()).filename().string()))
+                         : tr("Scene analysed; the analysis is kept next to the scene for next time"),
+      8000);
+  if (!document_->session().backend_note().empty())
+    statusBar()->showMessage(QString::fromStdString(document_->session().backend_note()), 8000);
+  geometry_->setFocus();
+  update_actions();
+  update_title();
+}
+
+bool MainWindow::open_rig(const QString& path) {
+  if (!document_) return false;
+  try {
+    const Rig rig = load_rig(path.toStdString());
+    undo_.clear();
+    document_->reset_rig(rig);
+    rig_path_ = path;
+    remember(kRecentRigs, path);
+    update_title();
+    return true;
+  } catch (const InputError& e) {
+    show_error(QString::fromStdString(e.what()));
+    return false;
+  }
+}
+
+bool MainWindow::save_rig(const QString& path) {
+  if (!document_) return false;
+  try {
+    relight::save_rig(path.toStdString(), document_->rig());
+  } catch (const std::exception& e) {
+    show_error(tr("%1: cannot save the rig (%2)").arg(path, QString::fromStdString(e.what())));
+    return false;
+  }
+  rig_path_ = path;
+  undo_.setClean();
+  remember(kRecentRigs, path);
+  update_title();
+  statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
+  return true;
+}
+
+void MainWindow::export_image(const QString& path) {
+  if (!document_ || busy()) return;
+  const QString suffix = QFileInfo(path).suffix().toLower();
+  if (suffix != "exr" && suffix != "png") {
+    show_error(tr("%1: export writes .exr (linear) or .png (with the exposure); name the file so").arg(path));
+    emit exportFinished(last_error_);
+    return;
+  }
+  const std::shared_ptr<const StudioScene> scene = scene_;
+  const Rig rig = document_->rig();
+  const RenderOptions render = options_.session.final_render;
+  const float exposure = photo_->exposure();
+  const std::string target = path.toStdString();
+  const bool png = suffix == "png";
+  run_task(
+      tr("Rendering %1\u2026").arg(QFileInfo(path).fileName()),
+      [scene, rig, render, exposure, target, png](Progress& progress) {
+        const Image image =
+            render_rig(scene->scene, *scene->rays, *scene->gbuffer, scene->analysis, rig, render, progress);
+        if (png)
+          write_png(target, image, exposure);
+        else
+          write_exr(target, image);
+      },
+      [this, path](const QString& error) {
+        if (error.isEmpty())
+          statusBar()->showMessage(tr("Exported %1").arg(path), 8000);
+        else
+          show_error(error == "cancelled" ? tr("The export of %1 was cancelled.").arg(path) : error);
+        emit exportFinished(error);
+      });
+}
+
+void MainWindow::add_light(const Light& light) {
+  if (document_) undo_.push(new AddLightCommand(*document_, light));
+}
+
+void MainWindow::change_light(int index, const Light& light) {
+  if (document_ && index >= 0)
+    undo_.push(new EditLightCommand(*document_, index, document_->light(index), light, tr("Change light")));
+}
+
+void MainWindow::delete_light(int index) {
+  if (document_ && index >= 0 && index < document_->light_count())
+    undo_.push(new DeleteLightCommand(*document_, index));
+}
+
+void MainWindow::set_light_enabled(int index, bool enabled) {
+  if (!document_) return;
+  Light light = document_->light(index);
+  light.enabled = enabled;
+  undo_.push(new EditLightCommand(*document_, index, document_->light(index), light,
+                                  enabled ? tr("Switch light on") : tr("Switch light off")));
+}
+
+void MainWindow::move_selected_light(const Vec3& delta) {
+  if (!document_ || selected_ < 0) return;
+  const Light& before = document_->light(selected_);
+  if (before.type == LightType::directional) {
+    statusBar()->showMessage(tr("A sun has no position: change its direction with Change\u2026"), 5000);
+    return;
+  }
+  Light after = before;
+  after.position += delta;
+  undo_.push(new EditLightCommand(*document_, selected_, before, after, tr("Move light"),
+                                  EditLightCommand::Merge::key_move));
+}
+
+void MainWindow::place_selected_light(const QPointF& image_position) {
+  if (!document_) return;
+  if (selected_ < 0) {
+    statusBar()->showMessage(tr("Select a light first (or add one with New\u2026), then click where it should shine"),
+                             5000);
+    return;
+  }
+  const Camera& camera = document_->session().view().camera();
+  const Vec3 dir = camera.ray_direction(float(image_position.x()), float(image_position.y()));
+  SurfacePoint hit;
+  if (!scene_->rays->intersect(camera.position(), dir, hit)) {
+    statusBar()->showMessage(tr("No modelled surface there to place the light in front of"), 5000);
+    return;
+  }
+  // In front of the surface, a fifth of the way back to the camera's distance.
+  const Light& before = document_->light(selected_);
+  Light after = before;
+  after.position = hit.position + 0.2f * hit.distance * hit.normal;
+  if (before.type != LightType::point) after.direction = -hit.normal;
+  undo_.push(new EditLightCommand(*document_, selected_, before, after, tr("Place light")));
+}
+
+void MainWindow::select_light(int index) {
+  if (!document_ || index >= document_->light_count()) index = -1;
+  selected_ = index;
+  geometry_->set_selected(index);
+  const QModelIndex row = index >= 0 ? model_->index(index) : QModelIndex();
+  if (list_->currentIndex() != row) {
+    const QSignalBlocker block(list_->selectionModel());
+    list_->selectionModel()->setCurrentIndex(row, QItemSelectionModel::ClearAndSelect);
+    list_->viewport()->update();
+  }
+  update_details();
+  update_actions();
+}
+
+bool MainWindow::refresh_frame() {
+  if (!document_) return false;
+  const Frame frame = document_->session().frame();
+  if (!frame.image || frame.image == photo_->relit()) return false;
+  photo_->set_relit(frame.image);
+  const char* backend = document_->session().backend() == Backend::gl ? "OpenGL" : "CPU";
+  switch (frame.quality) {
+    case FrameQuality::interactive: quality_->setText(tr("Preview (%1)").arg(backend)); break;
+    case FrameQuality::refining: quality_->setText(tr("Refining\u2026 (%1)").arg(backend)); break;
+    case FrameQuality::converged: quality_->setText(tr("Final quality (%1)").arg(backend)); break;
+  }
+  return true;
+}
+
+void MainWindow::update_details() {
+  const bool has = document_ && selected_ >= 0;
+  for (QLabel* label : {detail_type_, detail_colour_, detail_position_, detail_direction_, detail_power_})
+    label->setText(has ? QString() : QStringLiteral("\u2014"));
+  if (!has) return;
+  const Light& l = document_->light(selected_);
+  const bool sun = l.type == LightType::directional;
+  detail_type_->setText(sun ? tr("sun") : QString(to_string(l.type)));
+  detail_colour_->setText(QStringLiteral("<span style='color:%1'>\u25a0</span> %2 (%3, %4, %5)")
+                              .arg(display_colour(l.color).name(), colour_hex(l.color))
+                              .arg(double(l.color.x()), 0, 'g', 3)
+                              .arg(double(l.color.y()), 0, 'g', 3)
+                              .arg(double(l.color.z()), 0, 'g', 3));
+  detail_position_->setText(sun ? tr("\u2014 (infinitely far)") : vec3_text(l.position, tr(" m")));
+  detail_direction_->setText(l.type == LightType::point ? tr("\u2014 (all around)") : vec3_text(l.direction, {}));
+  detail_power_->setText(sun ? tr("%1 W/m\u00b2").arg(double(l.irradiance), 0, 'g', 4)
+                             : tr("%1 W").arg(double(l.power), 0, 'g', 4));
+}
+
+void MainWindow::update_actions() {
+  const bool open = document_ != nullptr && !busy();
+  const bool has = open && selected_ >= 0;
+  for (QAction* a : {save_rig_action_, save_rig_as_action_, open_rig_action_, export_action_, new_light_action_})
+    a->setEnabled(open);
+  new_button_->setEnabled(open);
+  for (QAction* a : {change_light_action_, delete_light_action_}) a->setEnabled(has);
+  change_button_->setEnabled(has);
+  delete_button_->setEnabled(has);
+  ambient_->setEnabled(open);
+}
+
+void MainWindow::update_title() {
+  QString title = tr("relight studio");
+  if (!scene_path_.isEmpty()) {
+    title += QStringLiteral(" \u2014 ") + QFileInfo(scene_path_).fileName();
+    title += QStringLiteral(" \u2014 ") + (rig_path_.isEmpty() ? tr("untitled rig") : QFileInfo(rig_path_).fileName());
+    title += QStringLiteral("[*]");
+  }
+  setWindowTitle(title);
+  setWindowModified(!undo_.isClean());
+}
+
+void MainWindow::show_error(const QString& text) {
+  last_error_ = text;
+  statusBar()->showMessage(text, 15000);
+  // Not modal to the event loop: long work and tests go on.
+  auto* box = new QMessageBox(QMessageBox::Warning, tr("relight studio"), text, QMessageBox::Ok, this);
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->open();
+}
+
+bool MainWindow::maybe_keep_changes() {
+  if (!document_ || undo_.isClean()) return true;
+  const auto answer = QMessageBox::question(
+      this, tr("Unsaved changes"), tr("The rig has changes that are not saved. Save them first?"),
+      QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Save);
+  if (answer == QMessageBox::Cancel) return false;
+  if (answer == QMessageBox::Discard) return true;
+  save_rig_action_->trigger();
+  return undo_.isClean();
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  if (maybe_keep_changes()) {
+    task_.cancel();
+    event->accept();
+  } else {
+    event->ignore();
+  }
+}
+
+Light MainWindow::default_new_light() const {
+  Light light;
+  light.type = LightType::point;
+  light.name = tr("light %1").arg(document_->light_count() + 1).toStdString();
+  const CameraSpec& camera = scene_->scene.camera.spec();
+  // Above the point the camera looks at, as bright as the first light there is.
+  light.position = camera.look_at + 0.1f * scene_->scene.mesh.bounds().diagonal().norm() * camera.up.normalized();
+  light.power = 100.0f;
+  for (const Light& l : document_->rig().lights)
+    if (l.type != LightType::directional && l.power > 0.0f) {
+      light.power = l.power;
+      break;
+    }
+  light.color = Vec3(1.0f, 0.93f, 0.85f);
+  return light;
+}
+
+void MainWindow::new_light_dialog() {
+  if (!document_) return;
+  LightDialog dialog(this);
+  dialog.setWindowTitle(tr("New light"));
+  dialog.set_light(default_new_light());
+  if (dialog.exec() == QDialog::Accepted) add_light(dialog.light());
+  geometry_->setFocus();
+}
+
+void MainWindow::change_light_dialog() {
+  if (!document_ || selected_ < 0) return;
+  LightDialog dialog(this);
+  dialog.setWindowTitle(tr("Change light"));
+  dialog.set_light(document_->light(selected_));
+  if (dialog.exec() == QDialog::Accepted) change_light(selected_, dialog.light());
+  geometry_->setFocus();
+}
+
+void MainWindow::remember(const QString& key, const QString& path) {
+  if (!options_.remember_recent) return;
+  QSettings settings;
+  QStringList paths = settings.value(key).toStringList();
+  const QString absolute = QFileInfo(path).absoluteFilePath();
+  paths.removeAll(absolute);
+  paths.prepend(absolute);
+  while (paths.size() > kMaxRecent) paths.removeLast();
+  settings.setValue(key, paths);
+}
+
+void MainWindow::fill_recent_menu(QMenu* menu, const QString& key) {
+  menu->clear();
+  const QStringList paths = options_.remember_recent ? QSettings().value(key).toStringList() : QStringList();
+  for (const QString& path : paths)
+    menu->addAction(path, this, [this, key, path] {
+      if (!maybe_keep_changes()) return;
+      if (key == kRecentScenes)
+        open_scene(path);
+      else
+        open_rig(path);
+    });
+  if (paths.isEmpty()) menu->addAction(tr("(none yet)"))->setEnabled(false);
+}
+
+}  // namespace relight::gui

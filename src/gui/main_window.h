@@ -1,0 +1,134 @@
+// MainWindow (thesis 6.2): relight studio's main form. Left: the geometry
+// view, the list of lights (eye checkbox, short description) with New,
+// Change and Delete, and the selected light's details. Right: the re-lit
+// photo, live from the relighting session, with a before/after split, an
+// exposure and the ambient (environment) level. Files: scenes (analysed on
+// a worker with progress and cancel, cached next to the scene), rigs,
+// exported images; every edit is undoable.
+#pragma once
+
+#include <QMainWindow>
+#include <QTimer>
+#include <QUndoStack>
+#include <memory>
+
+#include "gui/background_task.h"
+#include "gui/lighting_document.h"
+
+class QDoubleSpinBox;
+class QLabel;
+class QListView;
+class QMenu;
+class QProgressBar;
+class QPushButton;
+class QSlider;
+class QToolButton;
+
+namespace relight::gui {
+
+class GeometryView;
+class LightListModel;
+class PhotoView;
+
+struct StudioOptions {
+  AnalysisOptions analysis;  // for a scene without a cached analysis
+  SessionOptions session;    // its backend draws moving lights; its view size is chosen from the photo
+  int max_view_width = 1280; // larger photos are shown (and edited) smaller; an export is always full size
+  bool remember_recent = true;
+};
+// The defaults of the application: the OpenGL backend where it can open.
+StudioOptions default_studio_options();
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+
+ public:
+  explicit MainWindow(StudioOptions options = default_studio_options(), QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  // Loads the scene on a worker (sceneOpened or openFailed follows) with the
+  // rig, or the scene's own lights where rig_path is empty.
+  void open_scene(const QString& scene_path, const QString& rig_path = {});
+  bool open_rig(const QString& path);
+  bool save_rig(const QString& path);
+  // Renders the rig at full quality on a worker and writes EXR or PNG (by
+  // the extension; PNG through the exposure); exportFinished follows.
+  void export_image(const QString& path);
+  bool busy() const { return task_.running(); }
+  void cancel_task() { task_.cancel(); }
+
+  // The edits, each one undo step.
+  void add_light(const Light& light);
+  void change_light(int index, const Light& light);
+  void delete_light(int index);
+  void set_light_enabled(int index, bool enabled);
+  void move_selected_light(const Vec3& delta);
+  // Puts the selected light in front of the surface under the re-lit
+  // image's pixel position (spots, areas and suns aim at it).
+  void place_selected_light(const QPointF& image_position);
+
+  int selected_light() const { return selected_; }
+  void select_light(int index);
+  // Shows the session's newest frame; true if it was a new one.
+  bool refresh_frame();
+
+  LightingDocument* document() const { return document_.get(); }
+  QUndoStack& undo_stack() { return undo_; }
+  GeometryView& geometry_view() const { return *geometry_; }
+  PhotoView& photo_view() const { return *photo_; }
+  LightListModel& light_model() const { return *model_; }
+  QString rig_path() const { return rig_path_; }
+  QString last_error() const { return last_error_; }
+
+ signals:
+  void sceneOpened();
+  void openFailed(const QString& error);
+  void exportFinished(const QString& error);
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
+
+ private:
+  QWidget* make_left_panel();
+  QWidget* make_right_panel();
+  void make_menus();
+  void install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path, const QString& rig_path);
+  void run_task(const QString& label, BackgroundTask::Work work, std::function<void(const QString&)> done);
+  void show_error(const QString& text);
+  bool maybe_keep_changes();  // false: the user cancelled
+  void new_light_dialog();
+  void change_light_dialog();
+  void update_details();
+  void update_actions();
+  void update_title();
+  void remember(const QString& key, const QString& path);
+  void fill_recent_menu(QMenu* menu, const QString& key);
+  Light default_new_light() const;
+
+  StudioOptions options_;
+  std::shared_ptr<const StudioScene> scene_;
+  std::unique_ptr<LightingDocument> document_;
+  QUndoStack undo_;
+  BackgroundTask task_;
+  QTimer frame_timer_;
+  int selected_ = -1;
+  QString scene_path_, rig_path_, last_error_;
+
+  GeometryView* geometry_;
+  PhotoView* photo_;
+  LightListModel* model_;
+  QListView* list_;
+  QPushButton *new_button_, *change_button_, *delete_button_;
+  QLabel *detail_type_, *detail_colour_, *detail_position_, *detail_direction_, *detail_power_;
+  QSlider* split_;
+  QDoubleSpinBox* exposure_;
+  QDoubleSpinBox* ambient_;
+  QLabel* quality_;
+  QLabel* task_label_;
+  QProgressBar* task_progress_;
+  QToolButton* task_cancel_;
+  QAction *save_rig_action_, *save_rig_as_action_, *open_rig_action_, *export_action_;
+  QAction *new_light_action_, *change_light_action_, *delete_light_action_;
+};
+
+}  // namespace relight::gui

@@ -1,0 +1,56 @@
+// PhotoView (thesis 6.2.2): the re-lit photo, through an exposure, with a
+// before/after split against the original photo (left of the split: the
+// photo as taken). A click on the picture reports the pixel, for placing a
+// light in front of what was clicked.
+#pragma once
+
+#include <QImage>
+#include <QWidget>
+#include <memory>
+#include <optional>
+
+#include "core/image.h"
+
+namespace relight::gui {
+
+class PhotoView : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit PhotoView(QWidget* parent = nullptr);
+
+  void set_photo(std::shared_ptr<const Image> photo);    // before
+  void set_relit(std::shared_ptr<const Image> relit);    // after
+  std::shared_ptr<const Image> relit() const { return relit_; }
+  void set_exposure(float stops);
+  float exposure() const { return exposure_; }
+  // Share of the width, from the left, that shows the original photo (0..1).
+  void set_split(double share);
+  double split() const { return split_; }
+
+  // What is shown, at the re-lit image's size (empty before the first frame).
+  const QImage& displayed_image() const { return displayed_; }
+  // The pixel position in the re-lit image under a widget point, if on it.
+  std::optional<QPointF> image_position(const QPointF& widget_point) const;
+
+  QSize sizeHint() const override { return {800, 600}; }
+
+ signals:
+  // A click on the picture, in the re-lit image's pixels (continuous).
+  void photoClicked(const QPointF& position);
+
+ protected:
+  void paintEvent(QPaintEvent* event) override;
+  void mousePressEvent(QMouseEvent* event) override;
+
+ private:
+  QRectF picture_rect() const;  // where the image is drawn: fitted, centred
+  void compose();
+
+  std::shared_ptr<const Image> photo_, relit_;
+  QImage photo_image_, relit_image_, displayed_;
+  float exposure_ = 0.0f;
+  double split_ = 0.0;
+};
+
+}  // namespace relight::gui

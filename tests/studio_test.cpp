@@ -1,0 +1,489 @@
+// relight studio (src/gui) on a copy of the example room, offscreen: opening
+// a scene (analysis cached next to it), adding, editing, moving by keys and
+// mouse, switching off, deleting, undo, rig files, export, and that the
+// picture on screen follows the lights.
+#include <QDoubleSpinBox>
+#include <QFile>
+#include <QLineEdit>
+#include <QMouseEvent>
+#include <QPushButton>
+#include <QMessageBox>
+#include <QProcess>
+#include <QSettings>
+#include <QTimer>
+#include <QSignalSpy>
+#include <QTemporaryDir>
+#include <QtTest/QtTest>
+#include <filesystem>
+#include <memory>
+
+#include "gui/geometry_view.h"
+#include "gui/light_dialog.h"
+#include "gui/light_list_model.h"
+#include "gui/main_window.h"
+#include "gui/photo_view.h"
+#include "gui/tone_map.h"
+#include "io/image_io.h"
+#include "io/scene_io.h"
+
+using namespace relight;
+using namespace relight::gui;
+namespace fs = std::filesystem;
+
+// Exact equality (QCOMPARE compares floats fuzzily).
+#define EXPECT_EXACT(a, b)                                                                                   \
+  QVERIFY2((a) == (b), qPrintable(QStringLiteral("%1 = %2, expected %3 = %4")                                \
+                                      .arg(#a)                                                               \
+                                      .arg(double(a), 0, 'g', 9)                                             \
+                                      .arg(#b)                                                               \
+                                      .arg(double(b), 0, 'g', 9)))
+
+namespace {
+
+// Cheap analysis and refinement: the tests check the wiring, not the quality.
+StudioOptions quick_options() {
+  StudioOptions o;
+  o.analysis.paths_per_pixel = 4;
+  o.analysis.interreflection = false;
+  o.session.backend = Backend::cpu;
+  o.session.soft_light_samples = 4;
+  o.session.bounce_paths = 2;
+  o.session.final_render.paths_per_pixel = 4;
+  o.session.final_render.max_bounces = 1;
+  o.session.settle = std::chrono::milliseconds(20);
+  o.remember_recent = false;
+  return o;
+}
+
+void expect_same_light(const Light& a, const Light& b) {
+  QCOMPARE(a.name, b.name);
+  QCOMPARE(a.type, b.type);
+  QCOMPARE(a.enabled, b.enabled);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EXACT(a.color[i], b.color[i]);
+    EXPECT_EXACT(a.position[i], b.position[i]);
+    EXPECT_EXACT(a.direction[i], b.direction[i]);
+  }
+  EXPECT_EXACT(a.power, b.power);
+  EXPECT_EXACT(a.irradiance, b.irradiance);
+  EXPECT_EXACT(a.radius, b.radius);
+  EXPECT_EXACT(a.spot_angle_deg, b.spot_angle_deg);
+  EXPECT_EXACT(a.blend, b.blend);
+  EXPECT_EXACT(a.size.x(), b.size.x());
+  EXPECT_EXACT(a.size.y(), b.size.y());
+}
+
+// Where to write pictures of widgets for a look (RELIGHT_TEST_IMAGES=folder), if anywhere.
+void keep_picture(const QString& name, QWidget& widget) {
+  if (const char* folder = std::getenv("RELIGHT_TEST_IMAGES")) {
+    fs::create_directories(folder);
+    QVERIFY(widget.grab().save(QString::fromLocal8Bit(folder) + "/" + name + ".png"));
+  }
+}
+
+// Pixels whose colour differs between two images of one size.
+int differing_pixels(const QImage& a, const QImage& b) {
+  int n = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) n += a.pixel(x, y) != b.pixel(x, y);
+  return n;
+}
+
+}  // namespace
+
+class StudioTest : public QObject {
+  Q_OBJECT
+
+ private:
+  QTemporaryDir folder_;
+  QString scene_, evening_;
+  std::unique_ptr<MainWindow> window_;
+
+  // A window on the room; with `rig`, that rig instead of the scene's lamp.
+  void open(const QString& rig = {}) {
+    window_ = std::make_unique<MainWindow>(quick_options());
+    window_->resize(1200, 800);
+    window_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
+    QSignalSpy opened(window_.get(), &MainWindow::sceneOpened);
+    window_->open_scene(scene_, rig);
+    QVERIFY(opened.wait(240000));
+  }
+  LightingDocument& document() { return *window_->document(); }
+  // The session has drawn every edit so far at final quality; the window shows it.
+  void show_converged_frame() {
+    document().session().wait_until_converged();
+    window_->refresh_frame();
+  }
+
+ private slots:
+  void initTestCase() {
+    QVERIFY(folder_.isValid());
+    // Recent files go to an ini file in the test's folder, not the user's settings.
+    QCoreApplication::setOrganizationName("relight-test");
+    QSettings::setDefaultFormat(QSettings::IniFormat);
+    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, folder_.filePath("settings"));
+    const fs::path room = fs::path(RELIGHT_SOURCE_DIR) / "examples/room";
+    const fs::path copy = folder_.path().toStdString();
+    for (const char* f : {"scene.json", "photo.exr", "geometry.obj"}) fs::copy_file(room / f, copy / f);
+    fs::copy_file(room / "rigs/evening.json", copy / "evening.json");
+    scene_ = QString::fromStdString((copy / "scene.json").string());
+    evening_ = QString::fromStdString((copy / "evening.json").string());
+    // The first open analyses the scene and leaves the analysis beside it.
+    open();
+    QVERIFY(!document().studio_scene().from_cache);
+    QVERIFY(fs::exists(copy / "scene.analysis" / "analysis.json"));
+  }
+
+  void init() { open(); }
+  void cleanup() { window_.reset(); }
+
+  void reopening_reads_the_cached_analysis() {
+    QVERIFY(document().studio_scene().from_cache);
+    QCOMPARE(document().light_count(), 1);
+    QCOMPARE(document().light(0).name, std::string("lamp"));
+    QCOMPARE(window_->selected_light(), 0);
+  }
+
+  void a_missing_scene_is_a_message_naming_it() {
+    QSignalSpy failed(window_.get(), &MainWindow::openFailed);
+    window_->open_scene(folder_.filePath("nowhere.json"));
+    QVERIFY(failed.wait(60000));
+    QVERIFY(failed.at(0).at(0).toString().contains("nowhere.json"));
+    QCOMPARE(document().light_count(), 1);  // the open scene stays
+  }
+
+  void the_display_encodes_like_a_png_export() {
+    // A ramp over [-0.1, 1.2) through +1 stop: 8-bit sRGB as write_png does it.
+    Image ramp(4096, 1);
+    for (int x = 0; x < ramp.width; ++x) ramp.at(x, 0) = Vec3::Constant(-0.1f + 1.3f * float(x) / ramp.width);
+    const QImage shown = to_qimage(ramp, 1.0f);
+    for (int x = 0; x < ramp.width; ++x) {
+      const float v = std::clamp(2.0f * ramp.at(x, 0).x(), 0.0f, 1.0f);
+      QCOMPARE(qRed(shown.pixel(x, 0)), int(std::lround(255.0f * srgb_encode(v))));
+    }
+    QCOMPARE(colour_hex(Vec3(1.0f, srgb_decode(128.0f / 255.0f), 0.0f)), QStringLiteral("#ff8000"));
+  }
+
+  void cancelling_the_analysis_keeps_the_open_scene() {
+    const fs::path other = fs::path(folder_.path().toStdString()) / "other";
+    fs::create_directories(other);
+    for (const char* f : {"scene.json", "photo.exr", "geometry.obj"})
+      fs::copy_file(fs::path(folder_.path().toStdString()) / f, other / f);
+    QSignalSpy failed(window_.get(), &MainWindow::openFailed);
+    window_->open_scene(QString::fromStdString((other / "scene.json").string()));
+    QVERIFY(window_->busy());
+    window_->cancel_task();
+    QVERIFY(failed.wait(240000));
+    QCOMPARE(failed.at(0).at(0).toString(), QStringLiteral("cancelled"));
+    QVERIFY(!fs::exists(other / "scene.analysis"));
+    QVERIFY(!window_->busy());
+    QCOMPARE(document().light(0).name, std::string("lamp"));
+  }
+
+  void saved_rigs_are_remembered_as_recent() {
+    StudioOptions options = quick_options();
+    options.remember_recent = true;
+    window_ = std::make_unique<MainWindow>(options);
+    QSignalSpy opened(window_.get(), &MainWindow::sceneOpened);
+    window_->open_scene(scene_);
+    QVERIFY(opened.wait(240000));
+    const QString first = folder_.filePath("first.json"), second = folder_.filePath("second.json");
+    QVERIFY(window_->save_rig(first));
+    QVERIFY(window_->save_rig(second));
+    QVERIFY(window_->save_rig(first));
+    QCOMPARE(QSettings().value("recent_rigs").toStringList(), QStringList({first, second}));
+    QCOMPARE(QSettings().value("recent_scenes").toStringList().value(0), QFileInfo(scene_).absoluteFilePath());
+  }
+
+  void the_program_reports_a_bad_scene_in_one_line() {
+    QProcess studio;
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.insert("QT_QPA_PLATFORM", "offscreen");
+    studio.setProcessEnvironment(env);
+    studio.start(RELIGHT_STUDIO, {"--screenshot", folder_.filePath("shot.png"), folder_.filePath("nowhere.json")});
+    QVERIFY(studio.waitForFinished(120000));
+    QCOMPARE(studio.exitCode(), 2);
+    const QStringList lines = QString::fromLocal8Bit(studio.readAllStandardError()).split('\n', Qt::SkipEmptyParts);
+    QVERIFY(!lines.isEmpty());
+    QVERIFY2(lines.last().startsWith("relight-studio: " + folder_.filePath("nowhere.json") + ": "),
+             qPrintable(lines.last()));
+    QVERIFY(!QFile::exists(folder_.filePath("shot.png")));
+  }
+
+  void closing_with_unsaved_changes_asks_first() {
+    QTest::keyClick(&window_->geometry_view(), Qt::Key_Up);
+    const Vec3 moved = document().light(0).position;
+    // Answer the question the window asks (a modal message box) with `button`.
+    const auto answer = [](QMessageBox::StandardButton button) {
+      QTimer::singleShot(0, [button] {
+        auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+        QVERIFY(box);
+        QVERIFY(box->text().contains("not saved"));
+        box->button(button)->click();
+      });
+    };
+    answer(QMessageBox::Cancel);
+    QVERIFY(!window_->close());
+    QVERIFY(window_->isVisible());
+    QVERIFY(document().light(0).position == moved);
+    answer(QMessageBox::Discard);
+    QVERIFY(window_->close());
+  }
+
+  void adding_a_light_and_undo() {
+    Light spot;
+    spot.type = LightType::spot;
+    spot.name = "key";
+    spot.position = Vec3(0.5f, -1.0f, 1.8f);
+    spot.direction = Vec3(0.0f, 0.6f, -0.8f);
+    spot.power = 400.0f;
+    spot.spot_angle_deg = 35.0f;
+    window_->add_light(spot);
+    QCOMPARE(document().light_count(), 2);
+    expect_same_light(document().light(1), spot);
+    QCOMPARE(window_->selected_light(), 1);
+    QCOMPARE(window_->light_model().rowCount(), 2);
+    QCOMPARE(window_->light_model().data(window_->light_model().index(1), Qt::DisplayRole).toString(),
+             QStringLiteral("key \u2014 spot, 400 W"));
+    window_->undo_stack().undo();
+    QCOMPARE(document().light_count(), 1);
+    QCOMPARE(document().session().rig().lights.size(), size_t(1));
+    window_->undo_stack().redo();
+    expect_same_light(document().light(1), spot);
+    QCOMPARE(document().session().rig().lights.size(), size_t(2));
+  }
+
+  void the_dialog_keeps_untouched_values_and_takes_edits() {
+    const Light lamp = document().light(0);  // colour (1, 0.9, 0.75): not exact in hex
+    LightDialog dialog;
+    dialog.set_light(lamp);
+    expect_same_light(dialog.light(), lamp);
+    dialog.findChild<QDoubleSpinBox*>("position_x")->setValue(1.5);
+    dialog.findChild<QLineEdit*>("colour")->setText("#ff8000");
+    dialog.findChild<QDoubleSpinBox*>("power")->setValue(320.0);
+    const Light edited = dialog.light();
+    EXPECT_EXACT(edited.position.x(), 1.5f);
+    EXPECT_EXACT(edited.position.y(), lamp.position.y());
+    EXPECT_EXACT(edited.position.z(), lamp.position.z());
+    EXPECT_EXACT(edited.color.x(), 1.0f);
+    EXPECT_EXACT(edited.color.y(), srgb_decode(128.0f / 255.0f));
+    EXPECT_EXACT(edited.color.z(), 0.0f);
+    EXPECT_EXACT(edited.power, 320.0f);
+    EXPECT_EXACT(edited.radius, lamp.radius);
+    QVERIFY(dialog.validation_error().isEmpty());
+
+    window_->change_light(0, edited);
+    expect_same_light(document().light(0), edited);
+    window_->undo_stack().undo();
+    expect_same_light(document().light(0), lamp);
+  }
+
+  void the_dialog_explains_what_is_wrong() {
+    LightDialog dialog;
+    Light area;
+    area.type = LightType::area;
+    area.name = "softbox";
+    area.direction = Vec3(0, 1, 0);
+    dialog.set_light(area);
+    QVERIFY(dialog.validation_error().isEmpty());
+    keep_picture("light_dialog_area", dialog);
+    auto* ok = dialog.findChildren<QPushButton*>().first();
+    dialog.findChild<QLineEdit*>("colour")->setText("#12zz45");
+    QVERIFY(dialog.validation_error().startsWith("Colour: \u201c#12zz45\u201d is not a colour"));
+    QVERIFY(!ok->isEnabled());
+    keep_picture("light_dialog_error", dialog);
+    dialog.findChild<QLineEdit*>("colour")->setText("#123456");
+    dialog.findChild<QDoubleSpinBox*>("width")->setValue(0.0);
+    QVERIFY(dialog.validation_error().startsWith("Area size"));
+    dialog.findChild<QDoubleSpinBox*>("width")->setValue(0.5);
+    dialog.findChild<QDoubleSpinBox*>("direction_y")->setValue(0.0);
+    QVERIFY(dialog.validation_error().startsWith("Direction: must not be zero"));
+    dialog.findChild<QDoubleSpinBox*>("direction_z")->setValue(1.0);  // along up (0, 0, 1)
+    QVERIFY(dialog.validation_error().startsWith("Direction: an area light must not point along its up axis"));
+    dialog.findChild<QDoubleSpinBox*>("direction_z")->setValue(-1.0);
+    dialog.findChild<QDoubleSpinBox*>("direction_y")->setValue(1.0);
+    dialog.findChild<QLineEdit*>("description")->setText("  ");
+    QVERIFY(dialog.validation_error().startsWith("Description"));
+  }
+
+  void keys_move_the_selected_light_by_exact_steps() {
+    GeometryView& view = window_->geometry_view();
+    view.setFocus();
+    const Light start = document().light(0);
+    const GeometryView::MoveFrame f = view.move_frame();
+    const float step = view.move_step();
+    EXPECT_EXACT(step, 0.05f);  // the room is 4 x 4 x 2.5 m: about 6 cm, rounded to 5 cm
+    QVERIFY(std::abs(f.right.dot(f.up)) < 1e-6f);
+    QVERIFY(std::abs(f.forward.dot(f.up)) < 1e-6f);
+
+    Vec3 expected = start.position;
+    const auto press = [&](Qt::Key key, Qt::KeyboardModifiers modifiers, const Vec3& delta) {
+      QTest::keyClick(&view, key, modifiers);
+      expected += delta;
+      const Vec3 p = document().light(0).position;
+      EXPECT_EXACT(p.x(), expected.x());
+      EXPECT_EXACT(p.y(), expected.y());
+      EXPECT_EXACT(p.z(), expected.z());
+    };
+    press(Qt::Key_Right, Qt::NoModifier, Vec3(step * f.right));
+    press(Qt::Key_Left, Qt::NoModifier, Vec3(-step * f.right));
+    press(Qt::Key_Up, Qt::NoModifier, Vec3(step * f.up));
+    press(Qt::Key_Down, Qt::ShiftModifier, Vec3(-10.0f * step * f.up));
+    press(Qt::Key_Home, Qt::NoModifier, Vec3(step * f.forward));
+    press(Qt::Key_End, Qt::ShiftModifier, Vec3(-10.0f * step * f.forward));
+    EXPECT_EXACT(document().session().rig().lights[0].position.z(), expected.z());
+
+    // A run of key moves of one light is one undo step, back to the exact start.
+    QCOMPARE(window_->undo_stack().count(), 1);
+    window_->undo_stack().undo();
+    expect_same_light(document().light(0), start);
+  }
+
+  void the_eye_switches_a_light_off_and_on() {
+    LightListModel& model = window_->light_model();
+    QVERIFY(model.flags(model.index(0)) & Qt::ItemIsUserCheckable);
+    QCOMPARE(model.data(model.index(0), Qt::CheckStateRole).toInt(), int(Qt::Checked));
+    QVERIFY(model.setData(model.index(0), Qt::Unchecked, Qt::CheckStateRole));
+    QVERIFY(!document().light(0).enabled);
+    QVERIFY(!document().session().rig().lights[0].enabled);
+    QCOMPARE(model.data(model.index(0), Qt::CheckStateRole).toInt(), int(Qt::Unchecked));
+    window_->undo_stack().undo();
+    QVERIFY(document().light(0).enabled);
+    QCOMPARE(model.data(model.index(0), Qt::CheckStateRole).toInt(), int(Qt::Checked));
+  }
+
+  void delete_key_deletes_and_undo_puts_it_back_in_place() {
+    QVERIFY(window_->open_rig(evening_));
+    const Rig rig = document().rig();
+    QCOMPARE(rig.lights.size(), size_t(2));
+    window_->select_light(0);
+    QTest::keyClick(&window_->geometry_view(), Qt::Key_Delete);
+    QCOMPARE(document().light_count(), 1);
+    QCOMPARE(document().light(0).name, std::string("cool spot"));
+    QCOMPARE(window_->selected_light(), 0);
+    window_->undo_stack().undo();
+    QCOMPARE(document().light_count(), 2);
+    expect_same_light(document().light(0), rig.lights[0]);
+    expect_same_light(document().light(1), rig.lights[1]);
+    const Rig session_rig = document().session().rig();
+    QCOMPARE(session_rig.lights[0].name, std::string("lamp"));
+    QCOMPARE(session_rig.lights[1].name, std::string("cool spot"));
+  }
+
+  void a_rig_saves_and_loads_back_the_same() {
+    QVERIFY(window_->open_rig(evening_));
+    window_->select_light(1);
+    QTest::keyClick(&window_->geometry_view(), Qt::Key_Up);
+    QVERIFY(!window_->undo_stack().isClean());
+    const Rig edited = document().rig();
+    const QString path = folder_.filePath("saved.json");
+    QVERIFY(window_->save_rig(path));
+    QVERIFY(window_->undo_stack().isClean());
+    QCOMPARE(window_->rig_path(), path);
+    QFile file(path);
+    QVERIFY(file.open(QIODevice::ReadOnly));
+    QCOMPARE(file.readAll().toStdString(), rig_to_json(edited));
+
+    window_->undo_stack().undo();  // away from what was saved
+    QVERIFY(window_->open_rig(path));
+    QCOMPARE(rig_to_json(document().rig()), rig_to_json(edited));
+    expect_same_light(document().light(1), edited.lights[1]);
+    EXPECT_EXACT(document().rig().environment_scale, edited.environment_scale);
+    QVERIFY(!window_->open_rig(folder_.filePath("scene.json")));
+    QVERIFY(window_->last_error().contains("scene.json"));
+  }
+
+  void the_picture_changes_when_a_light_moves() {
+    show_converged_frame();
+    const QImage before = window_->photo_view().displayed_image();
+    QCOMPARE(before.size(), QSize(320, 240));
+    QCOMPARE(before, to_qimage(*window_->photo_view().relit(), 0.0f));
+    QTest::keyClick(&window_->geometry_view(), Qt::Key_Left, Qt::ShiftModifier);  // 50 cm
+    show_converged_frame();
+    const QImage after = window_->photo_view().displayed_image();
+    // The lamp lights the whole room: most of the picture changes.
+    QVERIFY2(differing_pixels(before, after) > before.width() * before.height() / 2,
+             qPrintable(QString::number(differing_pixels(before, after))));
+    // Renders are deterministic: undo brings back the very same picture.
+    window_->undo_stack().undo();
+    show_converged_frame();
+    QCOMPARE(differing_pixels(window_->photo_view().displayed_image(), before), 0);
+  }
+
+  void the_split_shows_the_photo_left_and_the_relit_image_right() {
+    show_converged_frame();
+    PhotoView& view = window_->photo_view();
+    view.set_exposure(1.0f);
+    view.set_split(0.5);
+    const QImage shown = view.displayed_image();
+    const QImage photo = to_qimage(document().scene().photo, 1.0f);
+    const QImage relit = to_qimage(*view.relit(), 1.0f);
+    for (int y = 0; y < shown.height(); y += 7) {
+      QCOMPARE(shown.pixel(159, y), photo.pixel(159, y));
+      QCOMPARE(shown.pixel(160, y), relit.pixel(160, y));
+    }
+    QVERIFY(differing_pixels(photo, relit) > 0);
+  }
+
+  void clicking_a_dot_selects_its_light_and_dragging_moves_it() {
+    QVERIFY(window_->open_rig(evening_));
+    GeometryView& view = window_->geometry_view();
+    const auto dot = view.project(view.marker_position(document().light(1)));
+    QVERIFY(dot.has_value());
+    const QPoint at = dot->toPoint();
+    QTest::mouseClick(&view, Qt::LeftButton, {}, at);
+    QCOMPARE(window_->selected_light(), 1);
+
+    const Light start = document().light(1);
+    const auto send = [&](QEvent::Type type, QPoint p, Qt::MouseButtons buttons) {
+      QMouseEvent event(type, p, view.mapToGlobal(p), Qt::LeftButton, buttons, Qt::NoModifier);
+      QApplication::sendEvent(&view, &event);
+    };
+    send(QEvent::MouseButtonPress, at, Qt::LeftButton);
+    send(QEvent::MouseMove, at + QPoint(40, 0), Qt::LeftButton);
+    send(QEvent::MouseButtonRelease, at + QPoint(40, 0), Qt::NoButton);
+    // Dragged sideways on screen: the light moved, and its dot with the mouse.
+    const Vec3 moved = document().light(1).position;
+    QVERIFY((moved - start.position).norm() > 0.05f);
+    const auto new_dot = view.project(moved);
+    QVERIFY(std::abs(new_dot->x() - (dot->x() + 40.0)) < 0.5);
+    QVERIFY(std::abs(new_dot->y() - dot->y()) < 0.5);
+    window_->undo_stack().undo();
+    expect_same_light(document().light(1), start);
+  }
+
+  void clicking_the_photo_places_the_light_in_front_of_the_surface() {
+    show_converged_frame();
+    PhotoView& view = window_->photo_view();
+    const QPoint centre = view.rect().center();
+    const auto pixel = view.image_position(centre);
+    QVERIFY(pixel.has_value());
+    QTest::mouseClick(&view, Qt::LeftButton, {}, centre);
+    const Camera& camera = document().session().view().camera();
+    SurfacePoint hit;
+    QVERIFY(document().studio_scene().rays->intersect(
+        camera.position(), camera.ray_direction(float(pixel->x()), float(pixel->y())), hit));
+    const Vec3 offset = document().light(0).position - hit.position;
+    // A fifth of the camera's distance out along the surface normal.
+    QVERIFY(std::abs(offset.norm() - 0.2f * hit.distance) < 1e-4f);
+    QVERIFY(offset.normalized().dot(hit.normal) > 0.9999f);
+    QCOMPARE(window_->undo_stack().undoText(), QStringLiteral("Place light"));
+  }
+
+  void export_writes_the_full_size_image() {
+    QSignalSpy done(window_.get(), &MainWindow::exportFinished);
+    const QString path = folder_.filePath("relit.png");
+    window_->export_image(path);
+    QVERIFY(done.wait(240000));
+    QCOMPARE(done.at(0).at(0).toString(), QString());
+    const Image image = read_image(path.toStdString());
+    QCOMPARE(image.width, 320);
+    QCOMPARE(image.height, 240);
+    window_->export_image(folder_.filePath("relit.tiff"));
+    QVERIFY(window_->last_error().contains("relit.tiff"));
+  }
+};
+
+QTEST_MAIN(StudioTest)
+#include "studio_test.moc"
