@@ -83,9 +83,12 @@ void add_mesh_command(CLI::App& app, Action& action) {
       "--albedo-gt", args->albedo_gt,
       "the true albedo: mesh.json then reports the share of shadow-edge pixels within 1.5 px of a mesh edge");
   cmd->add_option("--mask", args->mask, "with --albedo-gt: only pixels where this mask is 1 count");
-  cmd->footer(
-      "Example:\n  relight mesh scenes/outdoor/scene.json -o out/mesh\n"
-      "writes out/mesh/{mesh.obj, mesh.png, mesh.json}");
+  cmd->footer(help_footer(
+      "Refines the scene's mesh along the photo's shadow edges (thesis chapter 4): clips it to the view,\n"
+      "  splits edges where the photo along them is not a straight ramp, then moves vertices onto the edges.",
+      {{"relight mesh scenes/outdoor/scene.json -o out/mesh", "writes out/mesh/{mesh.obj, mesh.png, mesh.json}"},
+       {"relight mesh scene.json -o out/mesh --albedo-gt albedo_gt.exr --mask mask.exr",
+        "also reports how many shadow-edge pixels lie near a mesh edge"}}));
   cmd->callback([&action, args] {
     action = [args](Progress&) {
       args->options.subdivision.criterion = kCriteria.at(args->criterion);

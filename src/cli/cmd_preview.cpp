@@ -106,9 +106,6 @@ void add_preview_command(CLI::App& app, Action& action) {
                   "an analysis folder from 'relight analyze' to reuse (else the scene is analysed first)");
   add_sampling_options(*cmd, args->options);
   add_shadow_map_options(*cmd, args->shadow_maps);
-  cmd->footer(
-      "Example:\n  relight analyze scene.json -o analysis\n"
-      "  relight preview scene.json --rig rigs/evening.json --analysis analysis --size 1280x720 -o preview");
   cmd->footer(help_footer(
       "Moves the rig's first light around a circle through the interactive relighting engine, writing each\n"
       "  frame, the converged image and timing.json (frame times).",
