@@ -207,6 +207,8 @@ TEST(Cli, PreviewRefusesABadSize) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("16by12"), std::string::npos) << r.err;
+}
+
 TEST(Cli, MeshWritesTheRefinedMeshItsPictureAndItsCounts) {
   const fs::path dir = temp_folder("mesh");
   testing::internal::CaptureStdout();
