@@ -203,6 +203,13 @@ const std::vector<Row>& catalogue() {
       {"PlyHeaderWithoutEnd",
        [](SceneFolder& f) { f.scene["geometry"] = "geometry.ply"; write_text(f / "geometry.ply", "ply\nformat ascii 1.0\nelement vertex 3\n"); },
        Command::load, "geometry.ply", "a PLY header without an end_header line"},
+      {"PlyEndHeaderRunningIntoTheData",
+       [](SceneFolder& f) {
+         f.scene["geometry"] = "geometry.ply";
+         write_text(f / "geometry.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                                        "property float y\nproperty float z\nend_header\x03\x01\x02\x03");
+       },
+       Command::load, "geometry.ply", "a PLY header without an end_header line"},
       // the camera against the geometry
       {"CameraLooksAway", [](SceneFolder& f) { f.scene["camera"]["look_at"] = {0, -10, 2}; }, Command::analyze,
        "scene.json", "/camera: the camera sees no geometry"},

@@ -159,6 +159,29 @@ TEST(AnalysisCache, RenderRefusesAnAnalysisOfChangedInputs) {
   }
 }
 
+// An analyze killed while rewriting its folder leaves some images new and
+// analysis.json old; a file copied in from elsewhere does the same. Render
+// must refuse such a folder rather than relight with a mix.
+TEST(AnalysisCache, RenderRefusesImagesOtherThanThoseItDescribes) {
+  SceneFolder f("analysis_mixed");
+  f.write_json();
+  const std::string scene = (f / "scene.json").string();
+  const fs::path analysis = f / "analysis";
+  ASSERT_EQ(run_cli({"analyze", scene, "-o", analysis.string(), "--spp", "1"}).status, 0);
+  const std::vector<std::string> render = {"render", scene, "--rig", (f / "rig.json").string(), "--analysis",
+                                           analysis.string(), "-o", (f / "relit.exr").string(), "--spp", "1"};
+  for (const char* image : {"albedo_surface.exr", "albedo.exr", "background.exr", "mask.exr"}) {
+    const std::string original = read_text(analysis / image);
+    relight::write_exr(analysis / image, Image(8, 6, Vec3(0.5f, 0.4f, 0.3f)));  // the photo's size, other pixels
+    const auto [status, err] = run_cli(render);
+    EXPECT_EQ(status, 2) << image << ": " << err;
+    EXPECT_NE(err.find("analysis.json: /images_hash: the images of the analysis are not the ones it describes"),
+              std::string::npos) << image << ": " << err;
+    write_text(analysis / image, original);
+  }
+  EXPECT_EQ(run_cli(render).status, 0) << "the original images restored";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {

@@ -48,6 +48,18 @@ bool no_light_reaches_the_view(const Image& surface_illumination, const std::vec
   return true;
 }
 
+// The images of the analysis folder that later renders read. analysis.json is
+// written after them and records their hash, so a folder whose images are not
+// the ones it describes (an analyze killed while rewriting the folder, or a
+// file copied in from another analysis) is refused rather than mixed.
+constexpr const char* kAnalysisImages[] = {"albedo_surface.exr", "albedo.exr", "background.exr", "mask.exr"};
+
+std::string analysis_images_hash(const fs::path& folder) {
+  ContentHash hash;
+  for (const char* name : kAnalysisImages) hash.add_file(folder / name);
+  return hash.hex();
+}
+
 }  // namespace
 
 Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& options,
@@ -127,6 +139,7 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   nlohmann::json j;
   j["format"] = "relight-analysis/1";
   j["input_hash"] = analysis_input_hash(scene, a.options);
+  j["images_hash"] = analysis_images_hash(folder);
   j["strategy"] = to_string(a.options.strategy);
   j["paths_per_pixel"] = a.options.paths_per_pixel;
   j["gbuffer_samples"] = a.options.gbuffer_samples;
@@ -170,6 +183,10 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
       throw InputError(meta.string(), "/input_hash",
                        "the analysis is stale: " + scene.path.string() +
                            ", its photo, geometry or probes changed since it was made; re-run 'relight analyze'");
+    if (j.value("images_hash", std::string()) != analysis_images_hash(folder))
+      throw InputError(meta.string(), "/images_hash",
+                       "the images of the analysis are not the ones it describes (an interrupted or mixed "
+                       "analysis); re-run 'relight analyze'");
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {

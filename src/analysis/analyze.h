@@ -53,12 +53,13 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
 
 // The analysis folder: illumination.exr, albedo.exr (coverage-weighted, like
 // albedo_gt.exr), albedo.png, mask.exr, and analysis.json with the options,
-// the hash of the scene's inputs (analysis_input_hash) and the per-surface
-// albedo (albedo_surface.exr) that later renders need.
+// the hash of the scene's inputs (analysis_input_hash) and of the images, and
+// the per-surface albedo (albedo_surface.exr) that later renders need.
 void save_analysis(const std::filesystem::path& folder, const Analysis& analysis, const Scene& scene);
 // Loads a folder written by save_analysis for this scene; throws InputError
-// if it is missing, incomplete, made for a photo of another size, or stale:
-// made from a scene.json, photo, geometry or probe that has changed since.
+// if it is missing, incomplete, made for a photo of another size, stale
+// (made from a scene.json, photo, geometry or probe that has changed since),
+// or holds images other than those its analysis.json describes.
 Analysis load_analysis(const std::filesystem::path& folder, const Scene& scene);
 
 // A hash of everything an analysis depends on: the scene.json file, the

@@ -6,6 +6,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fstream>
+#include <string_view>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -51,15 +52,21 @@ void make_faces_consistent(const aiScene& scene) {
 }
 
 // Assimp's PLY reader runs past the end of a header that has no end_header
-// line (a crash found by fuzzing); Assimp picks it for any file that starts
-// with "ply", whatever its name.
+// line, or whose end_header is not ended by a line break (crashes found by
+// fuzzing); Assimp picks it for any file that starts with "ply", whatever
+// its name.
 void expect_complete_ply_header(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::string head(64 * 1024, '\0');
   in.read(head.data(), std::streamsize(head.size()));
   head.resize(size_t(in.gcount()));
-  if (head.rfind("ply", 0) == 0 && head.find("end_header") == std::string::npos)
-    throw InputError(path.string(), "", "a PLY header without an end_header line");
+  if (head.rfind("ply", 0) != 0) return;
+  const std::string_view key = "end_header";
+  for (size_t at = head.find(key); at != std::string::npos; at = head.find(key, at + 1)) {
+    const std::string_view rest = std::string_view(head).substr(at + key.size());
+    if (rest.starts_with("\n") || rest.starts_with("\r\n")) return;
+  }
+  throw InputError(path.string(), "", "a PLY header without an end_header line");
 }
 
 }  // namespace
