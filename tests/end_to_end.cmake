@@ -2,7 +2,7 @@
 # reference scenes of ../shared/scenes (skipped where they are absent).
 add_executable(roundtrip_test roundtrip_test.cpp)
 target_link_libraries(roundtrip_test PRIVATE relight_relight relight_example TBB::tbb GTest::gtest_main)
-gtest_discover_tests(roundtrip_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+gtest_discover_tests(roundtrip_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600 LABELS slow)
 
 add_executable(e2e_test e2e_test.cpp)
 target_link_libraries(e2e_test PRIVATE relight_relight GTest::gtest_main)

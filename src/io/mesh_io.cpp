@@ -6,6 +6,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fstream>
+#include <sstream>
 #include <string_view>
 
 #include "core/error.h"
@@ -51,11 +52,29 @@ void make_faces_consistent(const aiScene& scene) {
   }
 }
 
+// Every element of a PLY body takes at least a byte: a header claiming more
+// elements than the file has bytes is corrupt, and Assimp would reserve
+// memory for all of them first (out of memory, found by fuzzing).
+void expect_plausible_ply_counts(const fs::path& path, std::string_view header) {
+  const uintmax_t file_size = fs::file_size(path);
+  std::istringstream lines{std::string(header)};
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::string keyword, name;
+    double count = 0.0;
+    if (!(words >> keyword >> name >> count) || keyword != "element") continue;
+    if (count > double(file_size))
+      throw InputError(path.string(), "",
+                       "the PLY header claims " + std::to_string(uintmax_t(count)) + " " + name +
+                           " elements, more than the file's " + std::to_string(file_size) + " bytes can hold");
+  }
+}
+
 // Assimp's PLY reader runs past the end of a header that has no end_header
 // line, or whose end_header is not ended by a line break (crashes found by
 // fuzzing); Assimp picks it for any file that starts with "ply", whatever
 // its name.
-void expect_complete_ply_header(const fs::path& path) {
+void expect_sound_ply_header(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::string head(64 * 1024, '\0');
   in.read(head.data(), std::streamsize(head.size()));
@@ -64,7 +83,10 @@ void expect_complete_ply_header(const fs::path& path) {
   const std::string_view key = "end_header";
   for (size_t at = head.find(key); at != std::string::npos; at = head.find(key, at + 1)) {
     const std::string_view rest = std::string_view(head).substr(at + key.size());
-    if (rest.starts_with("\n") || rest.starts_with("\r\n")) return;
+    if (rest.starts_with("\n") || rest.starts_with("\r\n")) {
+      expect_plausible_ply_counts(path, std::string_view(head).substr(0, at));
+      return;
+    }
   }
   throw InputError(path.string(), "", "a PLY header without an end_header line");
 }
@@ -100,7 +122,7 @@ TriangleMesh load_mesh(const fs::path& path) {
   const std::string name = path.string();
   expect_input_file(path, "a mesh file");
 
-  expect_complete_ply_header(path);
+  expect_sound_ply_header(path);
   Assimp::Importer importer;
   // Import and validate first: a malformed file's inconsistent data would
   // trip Assimp's assertions (an abort) in the post-processing steps.
