@@ -14,7 +14,7 @@ namespace relight {
 // one is refused with an InputError before any pixel is read, so a huge photo
 // or a forged header cannot exhaust memory. The CLI sets it from --max-pixels
 // or RELIGHT_MAX_PIXELS (docs/reliability.md).
-inline constexpr int64_t kDefaultMaxImagePixels = 50'000'000;
+inline constexpr int64_t kDefaultMaxImagePixels = 25'000'000;
 int64_t max_image_pixels();
 void set_max_image_pixels(int64_t pixels);
 
