@@ -9,16 +9,12 @@
 #include "io/image_io.h"
 #include "io/scene_io.h"
 #include "relight/render_rig.h"
+#include "reference_scenes.h"
 
 namespace fs = std::filesystem;
 using namespace relight;
 
 namespace {
-
-fs::path scenes_folder() {
-  if (const char* env = std::getenv("RELIGHT_SCENES")) return env;
-  return fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes";
-}
 
 // Albedo PSNR: on the mask, values clipped to [0,1].
 double albedo_psnr(const Image& albedo, const fs::path& folder) {
@@ -35,7 +31,7 @@ double relit_psnr(const Image& image, const fs::path& reference) {
 class ReferenceScene : public testing::TestWithParam<std::string> {};
 
 TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
-  const fs::path folder = scenes_folder() / GetParam();
+  const fs::path folder = relight::test::reference_scenes_folder() / GetParam();
   if (!fs::exists(folder / "scene.json"))
     GTEST_SKIP() << "reference scene " << folder << " not found (set RELIGHT_SCENES to the scenes folder)";
 

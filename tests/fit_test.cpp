@@ -9,16 +9,12 @@
 #include "analysis/fit.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
+#include "reference_scenes.h"
 
 namespace fs = std::filesystem;
 using namespace relight;
 
 namespace {
-
-fs::path scenes_folder() {
-  if (const char* env = std::getenv("RELIGHT_SCENES")) return env;
-  return fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes";
-}
 
 double albedo_psnr(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const fs::path& folder) {
   AnalysisOptions options;
@@ -40,7 +36,7 @@ class FitReference : public testing::TestWithParam<Case> {};
 
 TEST_P(FitReference, RecoversPowerAndBackground) {
   const Case c = GetParam();
-  const fs::path folder = scenes_folder() / c.scene;
+  const fs::path folder = relight::test::reference_scenes_folder() / c.scene;
   if (!fs::exists(folder / "scene.json")) GTEST_SKIP() << folder << " not found (set RELIGHT_SCENES)";
   const Scene truth = load_scene(folder / "scene.json");
   Scene wrong = truth;

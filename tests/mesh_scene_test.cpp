@@ -12,19 +12,15 @@
 #include "io/scene_io.h"
 #include "mesh/mesh_picture.h"
 #include "mesh/refine.h"
+#include "reference_scenes.h"
 
 namespace fs = std::filesystem;
 using namespace relight;
 
 namespace {
 
-fs::path scenes_folder() {
-  if (const char* env = std::getenv("RELIGHT_SCENES")) return env;
-  return fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes";
-}
-
 TEST(OutdoorMesh, FollowsTheSunsShadowEdges) {
-  const fs::path folder = scenes_folder() / "outdoor";
+  const fs::path folder = relight::test::reference_scenes_folder() / "outdoor";
   if (!fs::exists(folder / "scene.json")) GTEST_SKIP() << "reference scene " << folder << " not found";
   const Scene scene = load_scene(folder / "scene.json");
   const RayScene rays(scene.mesh);

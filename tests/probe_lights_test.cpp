@@ -9,6 +9,7 @@
 #include "analysis/probe_lights.h"
 #include "io/scene_io.h"
 #include "render/ray_scene.h"
+#include "reference_scenes.h"
 
 namespace fs = std::filesystem;
 using namespace relight;
@@ -83,17 +84,12 @@ TEST(ProbeLights, TwoProbesTriangulateALamp) {
   EXPECT_FALSE(triangulate(a, Vec3(1, 0, 0), b, Vec3(1, 0, 0)));
 }
 
-fs::path scenes_folder() {
-  if (const char* env = std::getenv("RELIGHT_SCENES")) return env;
-  return fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes";
-}
-
 // The reference probes see the real lamp and sun: the power and colour they
 // imply match the scene's within 10 %.
 class ReferenceProbe : public testing::TestWithParam<std::string> {};
 
 TEST_P(ReferenceProbe, ImpliesTheLightsTruePower) {
-  const fs::path file = scenes_folder() / GetParam() / "scene.json";
+  const fs::path file = relight::test::reference_scenes_folder() / GetParam() / "scene.json";
   if (!fs::exists(file)) GTEST_SKIP() << file << " not found (set RELIGHT_SCENES)";
   const Scene scene = load_scene(file);
   const RayScene rays(scene.mesh);

@@ -13,16 +13,12 @@
 #include "io/scene_io.h"
 #include "realtime/shadow_maps.h"
 #include "render/direct_light.h"
+#include "reference_scenes.h"
 
 namespace fs = std::filesystem;
 using namespace relight;
 
 namespace {
-
-fs::path scenes_folder() {
-  if (const char* env = std::getenv("RELIGHT_SCENES")) return env;
-  return fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes";
-}
 
 // Where to write the images for a look (RELIGHT_TEST_IMAGES=folder), if anywhere.
 void keep_image(const std::string& name, const Image& image) {
@@ -55,7 +51,7 @@ double relit_psnr(const Image& test, const Image& reference) {
 class GlAgreesWithCpu : public testing::TestWithParam<std::string> {};
 
 TEST_P(GlAgreesWithCpu, OnEveryRigOfTheScene) {
-  const fs::path folder = scenes_folder() / GetParam();
+  const fs::path folder = relight::test::reference_scenes_folder() / GetParam();
   if (!fs::exists(folder / "scene.json"))
     GTEST_SKIP() << "reference scene " << folder << " not found (set RELIGHT_SCENES to the scenes folder)";
   const Scene scene = load_scene(folder / "scene.json");
