@@ -9,19 +9,9 @@
 using namespace relight;
 using relight::test::connectivity_errors;
 using relight::test::signed_area_xy;
+using relight::test::top_view;
 
 namespace {
-
-// Looking straight down from 5 m with a 90-degree view: the image (100 x 100
-// pixels) shows exactly x, y in [-5, 5] of the plane z = 0.
-Camera top_view() {
-  CameraSpec spec;
-  spec.position = {0, 0, 5};
-  spec.look_at = {0, 0, 0};
-  spec.up = {0, 1, 0};
-  spec.vfov_deg = 90;
-  return Camera(spec, 100, 100);
-}
 
 TEST(ClipToView, SplitsTheTwoEdgesCrossingABorderAndDropsTheOutsideCorner) {
   TriangleMesh m;

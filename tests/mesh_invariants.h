@@ -7,6 +7,7 @@
 #include <string>
 
 #include "mesh/connectivity_mesh.h"
+#include "scene/camera.h"
 
 namespace relight::test {
 
@@ -44,6 +45,18 @@ inline float signed_area_xy(const ConnectivityMesh& mesh, uint32_t t) {
   const auto& c = mesh.triangles()[t].vertices;
   const Vec3 a = mesh.vertices()[c[0]].position, b = mesh.vertices()[c[1]].position, d = mesh.vertices()[c[2]].position;
   return (b - a).cross(d - a).z();
+}
+
+// Looking straight down from 5 m, 90 degrees, 100 x 100 pixels: the image
+// shows exactly x, y in [-5, 5] of the plane z = 0; pixel x shows
+// X = (x / 50 - 1) * 5, pixel y shows Y = (1 - y / 50) * 5.
+inline Camera top_view() {
+  CameraSpec spec;
+  spec.position = {0, 0, 5};
+  spec.look_at = {0, 0, 0};
+  spec.up = {0, 1, 0};
+  spec.vfov_deg = 90;
+  return Camera(spec, 100, 100);
 }
 
 }  // namespace relight::test

@@ -11,19 +11,9 @@
 
 using namespace relight;
 using relight::test::signed_area_xy;
+using relight::test::top_view;
 
 namespace {
-
-// Looking straight down from 5 m, 90 degrees, 100 x 100 pixels: pixel x
-// shows X = (x / 50 - 1) * 5, pixel y shows Y = (1 - y / 50) * 5.
-Camera top_view() {
-  CameraSpec spec;
-  spec.position = {0, 0, 5};
-  spec.look_at = {0, 0, 0};
-  spec.up = {0, 1, 0};
-  spec.vfov_deg = 90;
-  return Camera(spec, 100, 100);
-}
 
 // Lit left of pixel column 52, a quarter as bright from there on; every
 // pixel shows input triangle 0.
