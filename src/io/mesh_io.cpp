@@ -5,6 +5,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -60,12 +61,12 @@ void expect_plausible_ply_counts(const fs::path& path, std::string_view header) 
   std::istringstream lines{std::string(header)};
   for (std::string line; std::getline(lines, line);) {
     std::istringstream words(line);
-    std::string keyword, name;
-    double count = 0.0;
-    if (!(words >> keyword >> name >> count) || keyword != "element") continue;
-    if (count > double(file_size))
+    std::string keyword, name, count_word;
+    if (!(words >> keyword >> name >> count_word) || keyword != "element") continue;
+    // Compared as a double: the count may be far beyond any integer type.
+    if (std::strtod(count_word.c_str(), nullptr) > double(file_size))
       throw InputError(path.string(), "",
-                       "the PLY header claims " + std::to_string(uintmax_t(count)) + " " + name +
+                       "the PLY header claims " + count_word + " " + name +
                            " elements, more than the file's " + std::to_string(file_size) + " bytes can hold");
   }
 }
