@@ -121,6 +121,25 @@ TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
   EXPECT_GT(db(last), db(dir / "albedo_render1.exr") + 5.0);
 }
 
+TEST(Cli, RadiosityAnalysisIsRecordedAndRendersFrom) {
+  const fs::path dir = temp_folder("radiosity");
+  ASSERT_EQ(relight_run({"analyze", (kRoom / "scene.json").string(), "-o", (dir / "analysis").string(), "--method",
+                         "radiosity", "--spp", "8", "--node-samples", "32", "--gather-rays", "128"}),
+            0);
+  std::ifstream json(dir / "analysis" / "analysis.json");
+  const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"method\": \"radiosity\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"gather_rays\": 128"), std::string::npos) << text;
+  const relight::Image truth = relight::read_image(kRoom / "albedo_gt.exr");
+  EXPECT_GT(relight::psnr(relight::clip01(relight::read_image(dir / "analysis" / "albedo.exr")), truth), 25.0);
+  // The folder is a valid analysis for later renders.
+  EXPECT_EQ(relight_run({"render", (kRoom / "scene.json").string(), "--rig", (kRoom / "rigs" / "evening.json").string(),
+                         "--analysis", (dir / "analysis").string(), "-o", (dir / "evening.exr").string(), "--spp",
+                         "4"}),
+            0);
+  EXPECT_TRUE(fs::exists(dir / "evening.exr"));
+}
+
 TEST(Cli, RenderRefusesAnAnalysisOfAnotherPhotoSize) {
   const fs::path dir = temp_folder("othersize");
   fs::create_directories(dir / "analysis");

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "analysis/radiosity_illumination.h"
 #include "analysis/surface_albedo.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -17,6 +18,23 @@ namespace fs = std::filesystem;
 
 GBuffer scene_gbuffer(const Scene& scene, const RayScene& rays, const AnalysisOptions& options) {
   return GBuffer(scene.camera, rays, options.gbuffer_samples, options.seed, scene.path.string());
+}
+
+const char* to_string(AnalysisMethod m) { return m == AnalysisMethod::radiosity ? "radiosity" : "path"; }
+
+std::optional<AnalysisMethod> parse_analysis_method(const std::string& s) {
+  if (s == "path") return AnalysisMethod::path;
+  if (s == "radiosity") return AnalysisMethod::radiosity;
+  return std::nullopt;
+}
+
+RadiosityOptions radiosity_options(const AnalysisOptions& options) {
+  RadiosityOptions o;
+  o.light_samples = options.node_samples;
+  o.gather_rays = options.gather_rays;
+  o.max_bounces = options.max_bounces;
+  o.seed = options.seed;
+  return o;
 }
 
 IlluminationOptions illumination_options(const AnalysisOptions& options) {
@@ -71,11 +89,19 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   const Lighting lighting = strategy_lighting(scene, rays, options.strategy);
   IntegratorOptions integrator_options;
   integrator_options.max_bounces = options.max_bounces;
+  std::unique_ptr<RadiosityIllumination> radiosity;
+  if (options.method == AnalysisMethod::radiosity)
+    radiosity = std::make_unique<RadiosityIllumination>(scene, rays, gbuffer, lighting, radiosity_options(options),
+                                                        options.direct_per_pixel, illumination_options(options),
+                                                        progress);
+  // The illumination with `albedo` on the surfaces light bounces off.
+  const auto render = [&](const SurfaceAlbedo& albedo, const std::string& label) {
+    if (radiosity) return radiosity->render(albedo);
+    const Integrator integrator(rays, lighting, &albedo, integrator_options);
+    return render_illumination(gbuffer, scene.camera, integrator, illumination_options(options), progress, label);
+  };
 
-  const WhiteAlbedo white;
-  const Integrator initial(rays, lighting, &white, integrator_options);
-  result.illumination = render_illumination(gbuffer, scene.camera, initial, illumination_options(options),
-                                            progress, "initial illumination");
+  result.illumination = render(WhiteAlbedo(), "initial illumination");
   if (no_light_reaches_the_view(result.illumination.surface, result.coverage))
     throw InputError(scene.path.string(), "/camera",
                      "no light reaches any surface the camera sees: is the camera inside the geometry, or every "
@@ -90,10 +116,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   Image bounce = result.albedo.albedo;
   for (int it = 0; options.interreflection && it < options.max_iterations; ++it) {
     const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, bounce, result.albedo.mean);
-    const Integrator integrator(rays, lighting, &bounce_albedo, integrator_options);
-    IlluminationImages illum = render_illumination(gbuffer, scene.camera, integrator,
-                                                   illumination_options(options), progress,
-                                                   "interreflection " + std::to_string(it + 1));
+    IlluminationImages illum = render(bounce_albedo, "interreflection " + std::to_string(it + 1));
     AlbedoImages next = recover_albedo(scene.photo, illum, gbuffer);
     const float change = mean_abs_change(next.albedo, bounce, result.coverage);
     for (size_t i = 0; i < bounce.size(); ++i) bounce.pixels[i] = 0.5f * (bounce.pixels[i] + next.albedo.pixels[i]);
@@ -116,6 +139,11 @@ std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& optio
   hash.add_text(fmt::format("{} {} {} {} {} {} {}", to_string(options.strategy), options.paths_per_pixel,
                             options.gbuffer_samples, options.seed, options.max_bounces, options.interreflection,
                             options.denoise));
+  // Added only for radiosity, so that path analyses made before the method
+  // existed stay valid.
+  if (options.method == AnalysisMethod::radiosity)
+    hash.add_text(fmt::format(" radiosity {} {} {}", options.node_samples, options.gather_rays,
+                              options.direct_per_pixel));
   return hash.hex();
 }
 
@@ -140,6 +168,7 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   j["format"] = "relight-analysis/1";
   j["input_hash"] = analysis_input_hash(scene, a.options);
   j["images_hash"] = analysis_images_hash(folder);
+  j["method"] = to_string(a.options.method);
   j["strategy"] = to_string(a.options.strategy);
   j["paths_per_pixel"] = a.options.paths_per_pixel;
   j["gbuffer_samples"] = a.options.gbuffer_samples;
@@ -147,6 +176,11 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   j["max_bounces"] = a.options.max_bounces;
   j["interreflection"] = a.options.interreflection;
   j["denoise"] = a.options.denoise;
+  if (a.options.method == AnalysisMethod::radiosity) {
+    j["node_samples"] = a.options.node_samples;
+    j["gather_rays"] = a.options.gather_rays;
+    j["direct_light"] = a.options.direct_per_pixel ? "pixels" : "nodes";
+  }
   j["iterations"] = a.iterations;
   j["width"] = w;
   j["height"] = h;
@@ -167,6 +201,7 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
   }
   Analysis a;
   try {
+    a.options.method = parse_analysis_method(j.value("method", std::string("path"))).value();
     a.options.strategy = parse_strategy(j.at("strategy").get<std::string>()).value();
     a.options.paths_per_pixel = j.at("paths_per_pixel").get<int>();
     a.options.gbuffer_samples = j.at("gbuffer_samples").get<int>();
@@ -174,6 +209,11 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
     a.options.max_bounces = j.at("max_bounces").get<int>();
     a.options.interreflection = j.at("interreflection").get<bool>();
     a.options.denoise = j.at("denoise").get<bool>();
+    if (a.options.method == AnalysisMethod::radiosity) {
+      a.options.node_samples = j.at("node_samples").get<int>();
+      a.options.gather_rays = j.at("gather_rays").get<int>();
+      a.options.direct_per_pixel = j.at("direct_light").get<std::string>() == "pixels";
+    }
     a.iterations = j.at("iterations").get<int>();
     const auto& u = j.at("unseen_albedo");
     a.albedo.mean = Vec3(u.at(0).get<float>(), u.at(1).get<float>(), u.at(2).get<float>());

@@ -1,23 +1,33 @@
 // Analysis: works out the light the photo was taken under and removes it.
 // Renders the initial illumination (white diffuse surfaces, thesis chapter 3)
-// under a strategy, divides the photo by it, and — with interreflection on —
+// under a strategy — by path tracing or by radiosity on the mesh refined
+// for the photo (analysis/radiosity_illumination.h) — divides the photo by
+// it, and — with interreflection on —
 // re-renders with the recovered albedo on the surfaces light bounces off until
 // the albedo settles (thesis 3.7's "iterative approach").
 #pragma once
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "analysis/albedo.h"
 #include "analysis/strategy.h"
 #include "core/progress.h"
+#include "render/radiosity.h"
 #include "render/gbuffer.h"
 #include "scene/scene.h"
 
 namespace relight {
 
+// How the initial illumination is simulated (thesis 3.2, 3.3).
+enum class AnalysisMethod { path, radiosity };
+const char* to_string(AnalysisMethod m);
+std::optional<AnalysisMethod> parse_analysis_method(const std::string& s);
+
 struct AnalysisOptions {
+  AnalysisMethod method = AnalysisMethod::path;
   Strategy strategy = Strategy::combined;
   int paths_per_pixel = 64;
   int gbuffer_samples = 9;   // sub-pixel samples per pixel (anti-aliasing)
@@ -27,7 +37,16 @@ struct AnalysisOptions {
   bool denoise = true;         // filter the environment + interreflection part of each render
   int max_iterations = 4;      // interreflection re-renders at most
   float tolerance = 0.005f;    // stop when the mean albedo change is below this
+  // With method radiosity, per node (paths_per_pixel is the path tracer's):
+  int node_samples = 64;       // for the light from the lights and the environment
+  int gather_rays = 256;       // for the light from the other surfaces
+  // With method radiosity: the lights' direct light traced per pixel
+  // (paths_per_pixel samples) rather than interpolated from the nodes.
+  bool direct_per_pixel = true;
 };
+
+// The radiosity solver's settings of an analysis.
+RadiosityOptions radiosity_options(const AnalysisOptions& options);
 
 // The render settings of an analysis, shared by every later render of it.
 IlluminationOptions illumination_options(const AnalysisOptions& options);

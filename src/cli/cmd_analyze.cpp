@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 void add_analyze_command(CLI::App& app, Action& action) {
   struct Args {
-    std::string scene, out, strategy, interreflection = "on";
+    std::string scene, out, strategy, interreflection = "on", method = "path", direct_light = "pixels";
     bool save_renders = false;
     AnalysisOptions options;
   };
@@ -28,6 +28,25 @@ void add_analyze_command(CLI::App& app, Action& action) {
                   "initial illumination: lights (+ constant background), probe, or combined (lights + probes with "
                   "the lights removed); default: combined where the scene has both")
       ->check(CLI::IsMember({"lights", "probe", "combined"}));
+  cmd->add_option("--method", args->method,
+                  "how the initial illumination is simulated: path (path tracing, --spp paths per pixel) or "
+                  "radiosity (gathering radiosity on the mesh refined along the photo's shadow edges, "
+                  "--node-samples and --gather-rays per mesh vertex)")
+      ->check(CLI::IsMember({"path", "radiosity"}))
+      ->capture_default_str();
+  cmd->add_option("--node-samples", args->options.node_samples,
+                  "radiosity: samples of the lights and the environment per node")
+      ->check(CLI::Range(1, 1 << 16))
+      ->capture_default_str();
+  cmd->add_option("--gather-rays", args->options.gather_rays,
+                  "radiosity: rays per node gathering the light from other surfaces")
+      ->check(CLI::Range(1, 1 << 16))
+      ->capture_default_str();
+  cmd->add_option("--direct-light", args->direct_light,
+                  "radiosity: the lights' direct light traced per pixel (pixels, --spp samples: sharp shadows) "
+                  "or interpolated from the mesh's vertices like the rest (nodes: the thesis's Gouraud shading)")
+      ->check(CLI::IsMember({"pixels", "nodes"}))
+      ->capture_default_str();
   cmd->add_option("--interreflection", args->interreflection,
                   "on: iterate the albedo with coloured interreflection; off: white diffuse surfaces (the thesis)")
       ->check(CLI::IsMember({"on", "off"}))
@@ -42,7 +61,9 @@ void add_analyze_command(CLI::App& app, Action& action) {
       {{"relight analyze examples/room/scene.json -o out/room",
         "writes out/room/{illumination.exr, albedo.exr, albedo.png, mask.exr, analysis.json}"},
        {"relight analyze scene.json -o analysis --strategy probe --spp 256",
-        "simulate the light from the probes only, with less noise"}}));
+        "simulate the light from the probes only, with less noise"},
+       {"relight analyze scene.json -o analysis --method radiosity",
+        "simulate it by radiosity on a mesh refined along the photo's shadows (the thesis's method)"}}));
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
       const auto start = std::chrono::steady_clock::now();
@@ -50,6 +71,8 @@ void add_analyze_command(CLI::App& app, Action& action) {
       AnalysisOptions options = args->options;
       options.strategy = args->strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args->strategy);
       options.interreflection = args->interreflection == "on";
+      options.method = *parse_analysis_method(args->method);
+      options.direct_per_pixel = args->direct_light == "pixels";
       std::vector<Image> renders;  // albedo_coverage of each render, with --save-renders
       const auto keep = [&](int, const AlbedoImages& albedo) { renders.push_back(albedo.albedo_coverage); };
       const Analysis analysis =
@@ -58,9 +81,12 @@ void add_analyze_command(CLI::App& app, Action& action) {
       for (size_t i = 0; i < renders.size(); ++i)
         write_exr(fs::path(args->out) / ("albedo_render" + std::to_string(i + 1) + ".exr"), renders[i]);
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::printf("analysis (%s, %d spp, %d render%s) written to %s in %.1f s\n", to_string(options.strategy),
-                  options.paths_per_pixel, analysis.iterations, analysis.iterations > 1 ? "s" : "", args->out.c_str(),
-                  secs);
+      const std::string sampling = options.method == AnalysisMethod::path
+                                       ? std::to_string(options.paths_per_pixel) + " spp"
+                                       : "radiosity, " + std::to_string(options.node_samples) + " samples and " +
+                                             std::to_string(options.gather_rays) + " rays per node";
+      std::printf("analysis (%s, %s, %d render%s) written to %s in %.1f s\n", to_string(options.strategy),
+                  sampling.c_str(), analysis.iterations, analysis.iterations > 1 ? "s" : "", args->out.c_str(), secs);
     };
   });
 }

@@ -72,6 +72,10 @@ void add_mesh_command(CLI::App& app, Action& action) {
                   "no split nearer than this many pixels to an edge's end")
       ->check(CLI::Range(2.0f, 1.0e4f))
       ->capture_default_str();
+  cmd->add_option("--max-edge", args->options.max_edge_px,
+                  "first split every edge longer than this many pixels (0: none; radiosity uses 24)")
+      ->check(CLI::Range(0.0f, 1.0e4f))
+      ->capture_default_str();
   cmd->add_option("--relax", args->options.relax.iterations, "relaxation passes (0: none)")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
@@ -107,6 +111,7 @@ void add_mesh_command(CLI::App& app, Action& action) {
                           {"vertices", mesh.vertices().size()},
                           {"edges", mesh.edges().size()},
                           {"edges_split_clipping", report.clip.edges_split},
+                          {"long_edges_split", report.long_edges_split},
                           {"edges_tested", report.subdivision.edges_tested},
                           {"edges_split", report.subdivision.edges_split},
                           {"vertices_moved", report.relax.vertices_moved},

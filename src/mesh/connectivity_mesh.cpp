@@ -240,11 +240,12 @@ void ConnectivityMesh::keep_triangles(const std::function<bool(const MeshTriangl
   build(parts.positions, parts.corners, parts.sources);
 }
 
-TriangleMesh ConnectivityMesh::to_triangle_mesh() const {
+TriangleMesh ConnectivityMesh::to_triangle_mesh(std::vector<uint32_t>* sources) const {
   Parts parts = compact([](const MeshTriangle&) { return true; });
   TriangleMesh mesh;
   mesh.positions = std::move(parts.positions);
   mesh.triangles = std::move(parts.corners);
+  if (sources) *sources = std::move(parts.sources);
   return mesh;
 }
 

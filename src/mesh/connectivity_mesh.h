@@ -85,8 +85,9 @@ class ConnectivityMesh {
   // edges left without triangles (indices are renumbered).
   void keep_triangles(const std::function<bool(const MeshTriangle&)>& keep);
 
-  // The plain triangle mesh (unused vertices left out).
-  TriangleMesh to_triangle_mesh() const;
+  // The plain triangle mesh (unused vertices left out), triangles in the
+  // same order; with `sources`, each triangle's input triangle too.
+  TriangleMesh to_triangle_mesh(std::vector<uint32_t>* sources = nullptr) const;
 
  private:
   // The kept triangles' vertices, corners (renumbered) and sources.

@@ -10,6 +10,11 @@
 namespace relight {
 
 struct RefineOptions {
+  // Before subdividing along the photo, split every edge longer than this
+  // many pixels in the photo (0: none). A radiosity solution, which
+  // interpolates across triangles, needs them small and rounder everywhere,
+  // not only where the photo changes.
+  float max_edge_px = 0.0f;
   SubdivisionOptions subdivision;
   RelaxOptions relax;
 };
@@ -19,6 +24,7 @@ struct RefineReport {
   size_t triangles_input = 0;    // after cleaning
   size_t triangles_clipped = 0;  // in view, before subdivision
   ClipStats clip;
+  size_t long_edges_split = 0;  // by max_edge_px
   SubdivisionStats subdivision;
   RelaxStats relax;
   double seconds = 0;  // clip, subdivide and relax

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <queue>
 
 namespace relight {
 
@@ -152,6 +153,30 @@ SubdivisionStats subdivide_along_shadows(ConnectivityMesh& mesh, const Camera& c
     for (size_t n = first_new_edge; n < mesh.edges().size(); ++n) queue.push_back(uint32_t(n));
   }
   return stats;
+}
+
+size_t split_long_edges(ConnectivityMesh& mesh, const EdgeExcess& excess, size_t max_triangles) {
+  const auto excess_of = [&](uint32_t e) {
+    const auto& ends = mesh.edges()[e].vertices;
+    return excess(mesh.vertices()[ends[0]].position, mesh.vertices()[ends[1]].position);
+  };
+  // Longest first: a split then adds edges (to the opposite corners) shorter
+  // than the triangles' other sides, so it ends; in any order, splitting
+  // short sides of thin triangles makes more long edges without end.
+  std::priority_queue<std::pair<float, uint32_t>> queue;
+  for (uint32_t e = 0; e < mesh.edges().size(); ++e) queue.emplace(excess_of(e), e);
+  size_t splits = 0;
+  while (!queue.empty() && queue.top().first > 1.0f && mesh.triangles().size() < max_triangles) {
+    const uint32_t e = queue.top().second;
+    queue.pop();
+    const auto& ends = mesh.edges()[e].vertices;
+    const size_t first_new_edge = mesh.edges().size();
+    mesh.split_edge(e, 0.5f * (mesh.vertices()[ends[0]].position + mesh.vertices()[ends[1]].position));
+    ++splits;
+    queue.emplace(excess_of(e), e);
+    for (size_t n = first_new_edge; n < mesh.edges().size(); ++n) queue.emplace(excess_of(uint32_t(n)), uint32_t(n));
+  }
+  return splits;
 }
 
 }  // namespace relight

@@ -6,6 +6,7 @@
 // edges are examined in turn. The new vertex lies on the 3D edge (4.2.4).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -72,5 +73,15 @@ struct SubdivisionStats {
 // camera) along the changes in the photo. `photo` is the camera's size.
 SubdivisionStats subdivide_along_shadows(ConnectivityMesh& mesh, const Camera& camera, const PhotoSamples& photo,
                                          const SubdivisionOptions& options);
+
+// How far an edge from a to b is over the length wanted there: its length
+// over that length (over 1: too long).
+using EdgeExcess = std::function<float(const Vec3& a, const Vec3& b)>;
+
+// Splits the edges too long by `excess` in the middle, the worst first, and
+// the pieces in turn, until none is or the mesh has max_triangles; returns
+// the splits. The even subdivision a radiosity solution needs (its nodes are
+// the vertices), as against the photo-driven one above.
+size_t split_long_edges(ConnectivityMesh& mesh, const EdgeExcess& excess, size_t max_triangles);
 
 }  // namespace relight

@@ -9,25 +9,24 @@ namespace {
 struct PixelSums {
   Image direct, indirect;
   std::vector<float> direct_variance, indirect_variance;  // of the pixel's mean luminance
-  IlluminationImages out;
 };
 
 // Traces paths_per_pixel paths per pixel. With seen_albedo, every camera
 // sample is weighted by the albedo of the surface it sees (a photo).
-PixelSums trace_pixels(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
+PixelSums trace_pixels(const GBuffer& gbuffer, const Integrator& integrator,
                        const SurfaceAlbedo* seen_albedo, int paths_per_pixel, uint64_t seed, Progress& progress,
                        const std::string& label) {
   const int w = gbuffer.width(), h = gbuffer.height(), spp = gbuffer.samples_per_pixel();
   const int paths = std::max(paths_per_pixel, spp);
   PixelSums r{Image(w, h), Image(w, h), std::vector<float>(size_t(w) * h, 0.0f),
-              std::vector<float>(size_t(w) * h, 0.0f), {Image(w, h), Image(w, h)}};
+              std::vector<float>(size_t(w) * h, 0.0f)};
   progress.begin(label, h);
   tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       Rng rng(seed, size_t(y) * w + x);
-      Vec3 direct_sum = Vec3::Zero(), indirect_sum = Vec3::Zero(), background = Vec3::Zero();
+      Vec3 direct_sum = Vec3::Zero(), indirect_sum = Vec3::Zero();
       double lum_sum = 0.0, lum_sq_sum = 0.0, direct_lum_sum = 0.0, direct_lum_sq_sum = 0.0;
-      int surface_n = 0, background_n = 0;
+      int surface_n = 0;
       for (int i = 0; i < paths; ++i) {
         const int k = i % spp;
         const GBufferSample& s = gbuffer.sample(x, y, k);
@@ -47,10 +46,6 @@ PixelSums trace_pixels(const GBuffer& gbuffer, const Camera& camera, const Integ
           direct_lum_sum += ld;
           direct_lum_sq_sum += ld * ld;
           ++surface_n;
-        } else if (i < spp) {  // the background needs one look per sample
-          const Vec2 pos = gbuffer.sample_position(x, y, k);
-          background += integrator.environment(camera.position(), camera.ray_direction(pos.x(), pos.y()));
-          ++background_n;
         }
       }
       const size_t idx = size_t(y) * w + x;
@@ -64,7 +59,6 @@ PixelSums trace_pixels(const GBuffer& gbuffer, const Camera& camera, const Integ
         r.indirect_variance[idx] = variance_of_mean(lum_sum, lum_sq_sum);
         r.direct_variance[idx] = variance_of_mean(direct_lum_sum, direct_lum_sq_sum);
       }
-      if (background_n) r.out.background.pixels[idx] = background / float(background_n);
     }
     progress.advance();
   });
@@ -80,10 +74,29 @@ bool all_zero(const Image& image) {
 
 }  // namespace
 
+Image render_background(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator) {
+  const int w = gbuffer.width(), h = gbuffer.height();
+  Image out(w, h);
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      Vec3 sum = Vec3::Zero();
+      int n = 0;
+      for (int k = 0; k < gbuffer.samples_per_pixel(); ++k) {
+        if (gbuffer.sample(x, y, k).hit) continue;
+        const Vec2 pos = gbuffer.sample_position(x, y, k);
+        sum += integrator.environment(camera.position(), camera.ray_direction(pos.x(), pos.y()));
+        ++n;
+      }
+      if (n) out.at(x, y) = sum / float(n);
+    }
+  });
+  return out;
+}
+
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                                        const IlluminationOptions& options, Progress& progress,
                                        const std::string& label) {
-  PixelSums r = trace_pixels(gbuffer, camera, integrator, nullptr, options.paths_per_pixel, options.seed, progress,
+  PixelSums r = trace_pixels(gbuffer, integrator, nullptr, options.paths_per_pixel, options.seed, progress,
                              label);
   if (options.denoise) {
     DenoiseOptions indirect_options;
@@ -99,17 +112,19 @@ IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& cam
     if (!all_zero(r.direct))
       r.direct = denoise_illumination(r.direct, std::move(r.direct_variance), gbuffer, direct_options);
   }
-  for (size_t i = 0; i < r.out.surface.size(); ++i) r.out.surface.pixels[i] = r.direct.pixels[i] + r.indirect.pixels[i];
-  return std::move(r.out);
+  IlluminationImages out{Image(gbuffer.width(), gbuffer.height()), render_background(gbuffer, camera, integrator)};
+  for (size_t i = 0; i < out.surface.size(); ++i) out.surface.pixels[i] = r.direct.pixels[i] + r.indirect.pixels[i];
+  return out;
 }
 
 Image synthesize_photo(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                        const SurfaceAlbedo& albedo, int paths_per_pixel, uint64_t seed, Progress& progress) {
-  const PixelSums r = trace_pixels(gbuffer, camera, integrator, &albedo, paths_per_pixel, seed, progress, "photo");
+  const PixelSums r = trace_pixels(gbuffer, integrator, &albedo, paths_per_pixel, seed, progress, "photo");
+  const Image background = render_background(gbuffer, camera, integrator);
   Image photo(gbuffer.width(), gbuffer.height());
   for (size_t i = 0; i < photo.size(); ++i) {
     const float c = gbuffer.coverage()[i];
-    photo.pixels[i] = c * (r.direct.pixels[i] + r.indirect.pixels[i]) + (1.0f - c) * r.out.background.pixels[i];
+    photo.pixels[i] = c * (r.direct.pixels[i] + r.indirect.pixels[i]) + (1.0f - c) * background.pixels[i];
   }
   return photo;
 }

@@ -29,6 +29,10 @@ struct IlluminationOptions {
 Image synthesize_photo(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                        const SurfaceAlbedo& albedo, int paths_per_pixel, uint64_t seed, Progress& progress);
 
+// The mean environment radiance over each pixel's samples that see the
+// background (0 where none does): IlluminationImages::background.
+Image render_background(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator);
+
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                                        const IlluminationOptions& options, Progress& progress,
                                        const std::string& label = "illumination");

@@ -1,0 +1,257 @@
+#include "render/radiosity.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace relight {
+
+namespace {
+
+// Corners whose normals are within about 20 degrees share a node: a smooth
+// or flat surface has one node per vertex and side, a crease one per face.
+constexpr float kSameNodeCos = 0.94f;
+// Node samples lie within this fraction of the way from the vertex into a
+// triangle's corner: a point sample of the vertex that stays clear of the
+// walls meeting at it (a sample exactly on a corner sees into them).
+constexpr float kCornerReach = 0.1f;
+constexpr uint32_t kNoNode = UINT32_MAX;
+// Sample points drawn before a node is taken for hidden from the viewpoint.
+constexpr int kViewpointTries = 8;
+
+// The shading normal of scene triangle t at a point (the face normal where
+// the scene mesh has none).
+Vec3 scene_normal(const TriangleMesh& scene, uint32_t t, const Vec3& point, const Vec3& face_normal) {
+  if (!scene.has_normals()) return face_normal;
+  const auto& c = scene.triangles[t];
+  const Vec3 a = scene.positions[c[0]], b = scene.positions[c[1]], d = scene.positions[c[2]];
+  const Vec3 n = (b - a).cross(d - a);
+  const float area2 = n.squaredNorm();
+  if (!(area2 > 0.0f)) return face_normal;
+  const float w1 = n.dot((point - a).cross(d - a)) / area2, w2 = n.dot((b - a).cross(point - a)) / area2;
+  const Vec3 shading = (1.0f - w1 - w2) * scene.normals[c[0]] + w1 * scene.normals[c[1]] + w2 * scene.normals[c[2]];
+  const float len = shading.norm();
+  if (!(len > 0.0f)) return face_normal;
+  // Shading normals point to the winding's side or against it; keep the winding's.
+  return shading.dot(face_normal) >= 0.0f ? Vec3(shading / len) : Vec3(-shading / len);
+}
+
+}  // namespace
+
+NodeMesh::NodeMesh(TriangleMesh mesh, std::vector<uint32_t> sources, const TriangleMesh& scene_mesh, Sides sides,
+                   const Vec3& viewpoint)
+    : mesh_(std::move(mesh)), sources_(std::move(sources)), sides_(sides) {
+  vertex_nodes_.resize(mesh_.positions.size());
+  corner_nodes_.assign(mesh_.triangles.size(), {kNoNode, kNoNode, kNoNode, kNoNode, kNoNode, kNoNode});
+  for (uint32_t t = 0; t < mesh_.triangles.size(); ++t) {
+    const Vec3 face = face_normal(t);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = mesh_.positions[mesh_.triangles[t][k]];
+      const Vec3 n = scene_normal(scene_mesh, sources_[t], p, face);
+      if (sides_ == Sides::both) {
+        add_corner(t, k, 0, n);
+        add_corner(t, k, 1, -n);
+      } else {
+        add_corner(t, k, 0, n.dot(viewpoint - p) >= 0.0f ? n : Vec3(-n));
+      }
+    }
+  }
+  for (Node& node : nodes_) node.normal.normalize();
+}
+
+void NodeMesh::add_corner(uint32_t t, int corner, int side, const Vec3& normal) {
+  const uint32_t v = mesh_.triangles[t][corner];
+  uint32_t chosen = kNoNode;
+  for (uint32_t n : vertex_nodes_[v])
+    if (nodes_[n].normal.normalized().dot(normal) > kSameNodeCos) {
+      chosen = n;
+      break;
+    }
+  if (chosen == kNoNode) {
+    chosen = uint32_t(nodes_.size());
+    nodes_.push_back({v, Vec3::Zero(), {}});
+    vertex_nodes_[v].push_back(chosen);
+  }
+  nodes_[chosen].normal += normal;  // normalised once all corners are in
+  nodes_[chosen].triangles.push_back(t);
+  corner_nodes_[t][size_t(side * 3 + corner)] = chosen;
+}
+
+Vec3 NodeMesh::face_normal(uint32_t t) const {
+  const auto& c = mesh_.triangles[t];
+  const Vec3 n = (mesh_.positions[c[1]] - mesh_.positions[c[0]]).cross(mesh_.positions[c[2]] - mesh_.positions[c[0]]);
+  const float len = n.norm();
+  return len > 0.0f ? Vec3(n / len) : Vec3(0.0f, 0.0f, 1.0f);
+}
+
+Vec3 NodeMesh::barycentric(uint32_t t, const Vec3& point) const {
+  const auto& c = mesh_.triangles[t];
+  const Vec3 a = mesh_.positions[c[0]], b = mesh_.positions[c[1]], d = mesh_.positions[c[2]];
+  const Vec3 n = (b - a).cross(d - a);
+  const float area2 = n.squaredNorm();
+  if (!(area2 > 0.0f)) return Vec3::Constant(1.0f / 3.0f);
+  const float w1 = n.dot((point - a).cross(d - a)) / area2, w2 = n.dot((b - a).cross(point - a)) / area2;
+  return Vec3(1.0f - w1 - w2, w1, w2);
+}
+
+Vec3 NodeMesh::interpolate(std::span<const Vec3> values, uint32_t t, const Vec3& bary, bool back) const {
+  const int side = sides_ == Sides::both && back ? 3 : 0;
+  const auto& nodes = corner_nodes_[t];
+  return bary.x() * values[nodes[side]] + bary.y() * values[nodes[side + 1]] + bary.z() * values[nodes[side + 2]];
+}
+
+SurfacePoint NodeMesh::sample_point(size_t n, const Vec2& u, uint32_t pick) const {
+  const Node& node = nodes_[n];
+  const uint32_t t = node.triangles[pick % node.triangles.size()];
+  const auto& c = mesh_.triangles[t];
+  int k = 0;
+  while (c[k] != node.vertex) ++k;
+  const Vec3 v = mesh_.positions[node.vertex];
+  const Vec3 a = mesh_.positions[c[(k + 1) % 3]], b = mesh_.positions[c[(k + 2) % 3]];
+  SurfacePoint p;
+  p.position = v + kCornerReach * u.x() * ((a - v) * u.y() + (b - v) * (1.0f - u.y()));
+  p.normal = node.normal;
+  const Vec3 face = face_normal(t);
+  p.geometric_normal = face.dot(node.normal) >= 0.0f ? face : Vec3(-face);
+  p.prim = sources_[t];
+  return p;
+}
+
+RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, const RayScene& scene_rays,
+                                 const RayScene& rays, const Lighting& lighting, const RadiosityOptions& options,
+                                 Progress& progress, const std::string& label, const std::optional<Vec3>& viewpoint)
+    : scene_(scene), rays_per_node_(std::max(1, options.gather_rays)) {
+  IntegratorOptions direct_only;
+  direct_only.max_bounces = 0;  // lights and environment, no light from other surfaces
+  const WhiteAlbedo white;
+  const Integrator integrator(rays, lighting, &white, direct_only);
+
+  const size_t n_nodes = nodes.nodes();
+  direct_.assign(n_nodes, Vec3::Zero());
+  std::vector<std::vector<Hit>> node_hits(n_nodes);
+  progress.begin(label, int64_t(n_nodes));
+  const auto seen = [&](const SurfacePoint& p) {
+    const Vec3 to_eye = *viewpoint - p.position;
+    const float distance = to_eye.norm();
+    const ShadowRay ray = rays.shadow_ray(p, to_eye / distance, distance);
+    return !rays.occluded(ray.origin, ray.dir, ray.tmax);
+  };
+  tbb::parallel_for(size_t(0), n_nodes, [&](size_t n) {
+    Rng rng(options.seed, n, 0x7ad105);
+    // The node's sample points, drawn anew for each use; with a viewpoint,
+    // a few tries for one it sees.
+    bool any_seen = viewpoint.has_value();
+    const auto sample_point = [&](int i) {
+      SurfacePoint p = nodes.sample_point(n, rng.uniform2(), uint32_t(i));
+      for (int tries = 0; any_seen && !seen(p); ++tries) {
+        if (tries == kViewpointTries) {
+          any_seen = i > 0;  // the first sample found none: the node is hidden, take any
+          break;
+        }
+        p = nodes.sample_point(n, rng.uniform2(), uint32_t(i + tries + 1));
+      }
+      return p;
+    };
+    Vec3 sum = Vec3::Zero();
+    const int samples = std::max(1, options.light_samples);
+    for (int i = 0; i < samples; ++i) sum += integrator.illumination(sample_point(i), rng);
+    direct_[n] = sum * (kPi / float(samples));
+
+    std::vector<Hit>& hits = node_hits[n];
+    for (int i = 0; i < rays_per_node_; ++i) {
+      const SurfacePoint p = sample_point(i);
+      const Vec3 d = to_world(sample_cosine_hemisphere(rng.uniform2()), p.normal);
+      if (d.dot(p.geometric_normal) <= 0.0f) continue;  // below the actual surface: no light
+      SurfacePoint hit;
+      if (!scene_rays.intersect(scene_rays.offset_origin(p, d), d, hit)) continue;  // the environment: in direct_
+      const Vec3 b = scene.barycentric(hit.prim, hit.position);
+      hits.push_back({hit.prim, b.y(), b.z(), d.dot(scene.face_normal(hit.prim)) > 0.0f});
+    }
+    progress.advance();
+  });
+  progress.end();
+
+  first_.assign(n_nodes + 1, 0);
+  for (size_t n = 0; n < n_nodes; ++n) first_[n + 1] = first_[n] + uint32_t(node_hits[n].size());
+  hits_.reserve(first_.back());
+  for (auto& h : node_hits) hits_.insert(hits_.end(), h.begin(), h.end());
+  hit_albedo_.assign(hits_.size(), Vec3::Ones());
+}
+
+void RadiosityGather::set_albedo(const SurfaceAlbedo& albedo) {
+  const TriangleMesh& mesh = scene_.mesh();
+  tbb::parallel_for(size_t(0), hits_.size(), [&](size_t i) {
+    const Hit& h = hits_[i];
+    const auto& c = mesh.triangles[h.triangle];
+    SurfacePoint p;
+    p.position = (1.0f - h.b1 - h.b2) * mesh.positions[c[0]] + h.b1 * mesh.positions[c[1]] + h.b2 * mesh.positions[c[2]];
+    p.normal = p.geometric_normal = h.back ? Vec3(-scene_.face_normal(h.triangle)) : scene_.face_normal(h.triangle);
+    p.prim = scene_.source(h.triangle);
+    hit_albedo_[i] = albedo.at(p);
+  });
+}
+
+std::vector<Vec3> RadiosityGather::gather(std::span<const Vec3> scene_irradiance) const {
+  std::vector<Vec3> out(direct_.size());
+  // Cosine-distributed rays: the irradiance is pi x the mean radiance they
+  // bring, and a diffuse surface's radiance is albedo x irradiance / pi.
+  const float per_ray = 1.0f / float(rays_per_node_);
+  tbb::parallel_for(size_t(0), direct_.size(), [&](size_t n) {
+    Vec3 sum = Vec3::Zero();
+    for (uint32_t i = first_[n]; i < first_[n + 1]; ++i) {
+      const Hit& h = hits_[i];
+      const Vec3 e = scene_.interpolate(scene_irradiance, h.triangle, Vec3(1.0f - h.b1 - h.b2, h.b1, h.b2), h.back);
+      sum += hit_albedo_[i].cwiseProduct(e);
+    }
+    out[n] = direct_[n] + sum * per_ray;
+  });
+  return out;
+}
+
+int solve_radiosity(const RadiosityGather& scene_gather, const RadiosityOptions& options,
+                    std::vector<Vec3>& irradiance) {
+  irradiance = scene_gather.direct();
+  double mean = 0.0;
+  for (const Vec3& e : irradiance) mean += luminance(e);
+  mean /= std::max<size_t>(1, irradiance.size());
+  int bounces = 0;
+  while (bounces + 1 < options.max_bounces) {
+    std::vector<Vec3> next = scene_gather.gather(irradiance);
+    ++bounces;
+    // Relative to the node's value, or to a thousandth of the mean for
+    // nodes in the dark (where any change is negligible).
+    float largest = 0.0f;
+    for (size_t n = 0; n < next.size(); ++n) {
+      const float scale = std::max(luminance(next[n]), float(1e-3 * mean));
+      if (scale > 0.0f) largest = std::max(largest, luminance(next[n] - irradiance[n]) / scale);
+    }
+    irradiance = std::move(next);
+    if (largest < options.tolerance) break;
+  }
+  return bounces;
+}
+
+Image illumination_from_nodes(const GBuffer& gbuffer, const Camera& camera, const NodeMesh& view,
+                              const RayScene& view_rays, std::span<const Vec3> irradiance) {
+  const int w = gbuffer.width(), h = gbuffer.height(), spp = gbuffer.samples_per_pixel();
+  Image out(w, h);
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      Vec3 sum = Vec3::Zero();
+      int n = 0;
+      for (int k = 0; k < spp; ++k) {
+        if (!gbuffer.sample(x, y, k).hit) continue;
+        const Vec2 pos = gbuffer.sample_position(x, y, k);
+        SurfacePoint hit;
+        if (!view_rays.intersect(camera.position(), camera.ray_direction(pos.x(), pos.y()), hit)) continue;
+        sum += view.interpolate(irradiance, hit.prim, view.barycentric(hit.prim, hit.position), false);
+        ++n;
+      }
+      if (n) out.at(x, y) = sum * (kInvPi / float(n));
+    }
+  });
+  return out;
+}
+
+}  // namespace relight
