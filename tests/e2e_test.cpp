@@ -63,6 +63,27 @@ TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
   EXPECT_GT(rigs, 0);
 }
 
+// --method radiosity at its defaults (the lights' direct light per pixel at
+// the fewest paths, 9: one per G-buffer sample). Measured 29.6 dB (outdoor)
+// and 27.7 dB (bookcase), docs/benchmarks.md "Radiosity against path
+// tracing"; asserted with a margin for the noise of other seeds.
+TEST_P(ReferenceScene, RadiosityAlbedo) {
+  const fs::path folder = relight::test::reference_scenes_folder() / GetParam();
+  if (!fs::exists(folder / "scene.json"))
+    GTEST_SKIP() << "reference scene " << folder << " not found (set RELIGHT_SCENES to the scenes folder)";
+  const Scene scene = load_scene(folder / "scene.json");
+  AnalysisOptions options;
+  options.method = AnalysisMethod::radiosity;
+  options.strategy = default_strategy(scene);
+  options.paths_per_pixel = 9;
+  const RayScene rays(scene.mesh);
+  const GBuffer gbuffer = scene_gbuffer(scene, rays, options);
+  const Analysis analysis = analyze(scene, rays, gbuffer, options, Progress::silent());
+  const double albedo = albedo_psnr(analysis.albedo.albedo_coverage, folder);
+  std::printf("[ figures  ] %s radiosity albedo PSNR %.2f dB\n", GetParam().c_str(), albedo);
+  EXPECT_GE(albedo, GetParam() == "outdoor" ? 29.0 : 27.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceScene, testing::Values("outdoor", "bookcase"));
 
 }  // namespace
