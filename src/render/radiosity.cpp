@@ -20,17 +20,25 @@ constexpr uint32_t kNoNode = UINT32_MAX;
 // Sample points drawn before a node is taken for hidden from the viewpoint.
 constexpr int kViewpointTries = 8;
 
+// The barycentric coordinates of a point on triangle t of a mesh (the
+// centre's for a degenerate triangle).
+Vec3 barycentric_on(const TriangleMesh& mesh, uint32_t t, const Vec3& point) {
+  const auto& c = mesh.triangles[t];
+  const Vec3 a = mesh.positions[c[0]], b = mesh.positions[c[1]], d = mesh.positions[c[2]];
+  const Vec3 n = (b - a).cross(d - a);
+  const float area2 = n.squaredNorm();
+  if (!(area2 > 0.0f)) return Vec3::Constant(1.0f / 3.0f);
+  const float w1 = n.dot((point - a).cross(d - a)) / area2, w2 = n.dot((b - a).cross(point - a)) / area2;
+  return Vec3(1.0f - w1 - w2, w1, w2);
+}
+
 // The shading normal of scene triangle t at a point (the face normal where
 // the scene mesh has none).
 Vec3 scene_normal(const TriangleMesh& scene, uint32_t t, const Vec3& point, const Vec3& face_normal) {
   if (!scene.has_normals()) return face_normal;
   const auto& c = scene.triangles[t];
-  const Vec3 a = scene.positions[c[0]], b = scene.positions[c[1]], d = scene.positions[c[2]];
-  const Vec3 n = (b - a).cross(d - a);
-  const float area2 = n.squaredNorm();
-  if (!(area2 > 0.0f)) return face_normal;
-  const float w1 = n.dot((point - a).cross(d - a)) / area2, w2 = n.dot((b - a).cross(point - a)) / area2;
-  const Vec3 shading = (1.0f - w1 - w2) * scene.normals[c[0]] + w1 * scene.normals[c[1]] + w2 * scene.normals[c[2]];
+  const Vec3 w = barycentric_on(scene, t, point);
+  const Vec3 shading = w.x() * scene.normals[c[0]] + w.y() * scene.normals[c[1]] + w.z() * scene.normals[c[2]];
   const float len = shading.norm();
   if (!(len > 0.0f)) return face_normal;
   // Shading normals point to the winding's side or against it; keep the winding's.
@@ -85,15 +93,7 @@ Vec3 NodeMesh::face_normal(uint32_t t) const {
   return len > 0.0f ? Vec3(n / len) : Vec3(0.0f, 0.0f, 1.0f);
 }
 
-Vec3 NodeMesh::barycentric(uint32_t t, const Vec3& point) const {
-  const auto& c = mesh_.triangles[t];
-  const Vec3 a = mesh_.positions[c[0]], b = mesh_.positions[c[1]], d = mesh_.positions[c[2]];
-  const Vec3 n = (b - a).cross(d - a);
-  const float area2 = n.squaredNorm();
-  if (!(area2 > 0.0f)) return Vec3::Constant(1.0f / 3.0f);
-  const float w1 = n.dot((point - a).cross(d - a)) / area2, w2 = n.dot((b - a).cross(point - a)) / area2;
-  return Vec3(1.0f - w1 - w2, w1, w2);
-}
+Vec3 NodeMesh::barycentric(uint32_t t, const Vec3& point) const { return barycentric_on(mesh_, t, point); }
 
 Vec3 NodeMesh::interpolate(std::span<const Vec3> values, uint32_t t, const Vec3& bary, bool back) const {
   const int side = sides_ == Sides::both && back ? 3 : 0;
