@@ -484,10 +484,19 @@ TEST(MeshErrors, EmptyFile) {
   EXPECT_MENTIONS(input_error_message([&] { load_mesh(dir / "empty.obj"); }), (dir / "empty.obj").string());
 }
 
-TEST(Mesh, LoadsTrianglesAndDropsDegenerateOnes) {
+TEST(Mesh, RefusesDegenerateTrianglesUnlessRepairing) {
   TempDir dir;
   write_text(dir / "mesh.obj", std::string(kQuadObj) + "v 5 5 5\nv 6 6 6\nv 7 7 7\nf 5 6 7\n");
-  const TriangleMesh mesh = load_mesh(dir / "mesh.obj");
+  EXPECT_THROW(load_mesh(dir / "mesh.obj"), InputError);
+  set_repair_meshes(true);
+  TriangleMesh mesh;
+  try {
+    mesh = load_mesh(dir / "mesh.obj");
+  } catch (...) {
+    set_repair_meshes(false);
+    throw;
+  }
+  set_repair_meshes(false);
   ASSERT_EQ(mesh.triangles.size(), 2u);
   // The two kept triangles are the quad's: their corners span [-1, 1]^2 in z = 0.
   Eigen::AlignedBox3f box;

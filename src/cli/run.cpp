@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "io/mesh_io.h"
 #include "io/scene_io.h"
 
 namespace relight::cli {
@@ -76,6 +77,10 @@ int run(std::span<const std::string> args) {
       ->envname("RELIGHT_MAX_PIXELS")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  bool repair_mesh = false;
+  app.add_flag("--repair-mesh", repair_mesh,
+               "drop the geometry's degenerate (zero-area) triangles with a warning instead of refusing it")
+      ->envname("RELIGHT_REPAIR_MESH");
   app.fallthrough();  // the global options may follow the subcommand
   Action action;
   add_analyze_command(app, action);
@@ -94,6 +99,7 @@ int run(std::span<const std::string> args) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   set_max_image_pixels(max_pixels);
+  set_repair_meshes(repair_mesh);
   // Warnings go to stderr with the errors; stdout carries only the results.
   static const auto log_to_stderr =
       std::make_shared<spdlog::logger>("relight", std::make_shared<spdlog::sinks::stderr_color_sink_mt>());

@@ -9,6 +9,7 @@
 
 #include "gui/main_window.h"
 #include "io/atomic_file.h"
+#include "io/mesh_io.h"
 
 namespace relight::gui {
 
@@ -60,8 +61,13 @@ int run_studio(int argc, char** argv) {
   const QCommandLineOption size("size", "window size WIDTHxHEIGHT", "WxH", "1500x900");
   const QCommandLineOption split("split", "before/after split, percent of the width showing the photo", "PERCENT",
                                  "0");
-  parser.addOptions({cpu, screenshot, size, split});
+  const QCommandLineOption repair("repair-mesh",
+                                  "drop the geometry's degenerate (zero-area) triangles instead of refusing it "
+                                  "(or set RELIGHT_REPAIR_MESH=1)");
+  parser.addOptions({cpu, screenshot, size, split, repair});
   parser.process(app);
+  const QString repair_env = qEnvironmentVariable("RELIGHT_REPAIR_MESH");
+  set_repair_meshes(parser.isSet(repair) || (!repair_env.isEmpty() && repair_env != "0"));
   const QStringList files = parser.positionalArguments();
   const QRegularExpressionMatch wxh = QRegularExpression("^(\\d{3,5})x(\\d{3,5})$").match(parser.value(size));
   if (files.size() > 2 || !wxh.hasMatch() || (parser.isSet(screenshot) && files.isEmpty())) {

@@ -5,10 +5,13 @@
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string_view>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -92,19 +95,83 @@ void expect_sound_ply_header(const fs::path& path) {
   throw InputError(path.string(), "", "a PLY header without an end_header line");
 }
 
+std::atomic<bool> g_repair_meshes{false};
+
+// Refuses degenerate triangles, or with repair_meshes() drops them.
+void drop_degenerate_triangles(const std::string& name, TriangleMesh& mesh) {
+  const std::vector<size_t> bad = degenerate_triangles(mesh);
+  if (bad.empty()) return;
+  if (bad.size() == mesh.triangles.size())
+    throw InputError(name, "", "every triangle of the mesh is degenerate (zero area)");
+  if (!repair_meshes())
+    throw InputError(name, fmt::format("triangle {}", bad.front() + 1),
+                     fmt::format("is degenerate (zero area){}: remove such triangles (Blender: Mesh > Clean Up > "
+                                 "Degenerate Dissolve) or run with --repair-mesh to drop them",
+                                 bad.size() == 2   ? std::string(", as is 1 other")
+                                 : bad.size() > 2 ? fmt::format(", as are {} others", bad.size() - 1)
+                                                  : std::string()));
+  size_t kept = 0, next_bad = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (next_bad < bad.size() && bad[next_bad] == t) {
+      ++next_bad;
+      continue;
+    }
+    mesh.triangles[kept++] = mesh.triangles[t];
+  }
+  mesh.triangles.resize(kept);
+  spdlog::warn("{}: dropped {} degenerate (zero-area) triangles", name, bad.size());
+}
+
 }  // namespace
 
-size_t remove_degenerate_triangles(TriangleMesh& mesh) {
-  const size_t before = mesh.triangles.size();
-  std::erase_if(mesh.triangles, [&](const std::array<uint32_t, 3>& t) {
-    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return true;
+std::vector<size_t> degenerate_triangles(const TriangleMesh& mesh) {
+  std::vector<size_t> out;
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      out.push_back(i);
+      continue;
+    }
     const Vec3 e1 = mesh.positions[t[1]] - mesh.positions[t[0]];
     const Vec3 e2 = mesh.positions[t[2]] - mesh.positions[t[0]];
     const float scale = std::max(e1.squaredNorm(), e2.squaredNorm());
-    return !(e1.cross(e2).squaredNorm() > 1e-12f * scale * scale);
-  });
-  return before - mesh.triangles.size();
+    if (!(e1.cross(e2).squaredNorm() > 1e-12f * scale * scale)) out.push_back(i);
+  }
+  return out;
 }
+
+size_t count_non_manifold_edges(const TriangleMesh& mesh) {
+  // Vertices at the same position are one (files repeat them where normals
+  // or texture coordinates differ).
+  struct PositionHash {
+    size_t operator()(const Vec3& p) const {
+      return std::hash<float>()(p.x()) ^ (std::hash<float>()(p.y()) << 1) ^ (std::hash<float>()(p.z()) << 2);
+    }
+  };
+  std::unordered_map<Vec3, uint32_t, PositionHash> id;
+  std::vector<uint32_t> vertex(mesh.positions.size());
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    vertex[v] = id.try_emplace(mesh.positions[v], uint32_t(id.size())).first->second;
+  std::vector<uint64_t> edges;
+  edges.reserve(3 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = vertex[t[k]], b = vertex[t[(k + 1) % 3]];
+      edges.push_back((uint64_t(std::min(a, b)) << 32) | std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  size_t count = 0;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    count += j - i > 2;
+    i = j;
+  }
+  return count;
+}
+
+bool repair_meshes() { return g_repair_meshes.load(); }
+void set_repair_meshes(bool repair) { g_repair_meshes.store(repair); }
 
 void save_obj(const fs::path& path, const TriangleMesh& mesh) {
   std::string text = "# written by relight\n";
@@ -176,9 +243,10 @@ TriangleMesh load_mesh(const fs::path& path) {
     }
   }
   if (mesh.triangles.empty()) throw InputError(name, "", "the mesh has no triangles");
-  if (const size_t dropped = remove_degenerate_triangles(mesh))
-    spdlog::warn("{}: dropped {} degenerate (zero-area) triangles", name, dropped);
-  if (mesh.triangles.empty()) throw InputError(name, "", "every triangle of the mesh is degenerate (zero area)");
+  drop_degenerate_triangles(name, mesh);
+  if (const size_t edges = count_non_manifold_edges(mesh))
+    spdlog::warn("{}: {} edge{} shared by three or more triangles (non-manifold); rendered as two-sided surfaces",
+                 name, edges, edges > 1 ? "s" : "");
   // A zero normal (from a bad file) disables smooth shading for the whole mesh.
   for (const auto& n : mesh.normals)
     if (n.isZero()) {

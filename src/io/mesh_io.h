@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "scene/triangle_mesh.h"
 
@@ -10,16 +11,27 @@ namespace relight {
 
 // Loads every triangle of the file with node transforms applied. Throws
 // InputError for a missing/unreadable file, no triangles, non-finite or
-// out-of-range (> 1e7 m) vertices, or a face index past the vertices.
-// Degenerate (zero-area) triangles are dropped with a warning; a mesh whose
-// triangles are all degenerate is an error. Non-manifold meshes are fine:
-// surfaces are two-sided, so the ray tracer needs no closed solids.
+// out-of-range (> 1e7 m) vertices, a face index past the vertices, or
+// degenerate (zero-area) triangles — unless repair_meshes() is on, which
+// drops those with a warning (a mesh of nothing else stays an error).
+// Non-manifold edges (three or more triangles on one) get a warning: the
+// ray tracer needs no closed solids (surfaces are two-sided), and real
+// scenes have them (the reference bookcase's shelves meet its sides so).
 TriangleMesh load_mesh(const std::filesystem::path& path);
+
+// Whether load_mesh drops degenerate triangles instead of refusing the mesh
+// (the CLI's --repair-mesh or RELIGHT_REPAIR_MESH). Off by default.
+bool repair_meshes();
+void set_repair_meshes(bool repair);
 
 // Writes the mesh as Wavefront OBJ (with normals when it has them), atomically.
 void save_obj(const std::filesystem::path& path, const TriangleMesh& mesh);
 
-// Removes zero-area triangles and ones with repeated vertices; returns how many.
-size_t remove_degenerate_triangles(TriangleMesh& mesh);
+// The indices of the zero-area triangles and ones with repeated vertices.
+std::vector<size_t> degenerate_triangles(const TriangleMesh& mesh);
+
+// The edges (between vertices at the same positions) that three or more
+// triangles share.
+size_t count_non_manifold_edges(const TriangleMesh& mesh);
 
 }  // namespace relight
