@@ -12,10 +12,6 @@ namespace {
 // Corners whose normals are within about 20 degrees share a node: a smooth
 // or flat surface has one node per vertex and side, a crease one per face.
 constexpr float kSameNodeCos = 0.94f;
-// Node samples lie within this fraction of the way from the vertex into a
-// triangle's corner: a point sample of the vertex that stays clear of the
-// walls meeting at it (a sample exactly on a corner sees into them).
-constexpr float kCornerReach = 0.1f;
 constexpr uint32_t kNoNode = UINT32_MAX;
 // Sample points drawn before a node is taken for hidden from the viewpoint.
 constexpr int kViewpointTries = 8;
@@ -95,22 +91,55 @@ Vec3 NodeMesh::face_normal(uint32_t t) const {
 
 Vec3 NodeMesh::barycentric(uint32_t t, const Vec3& point) const { return barycentric_on(mesh_, t, point); }
 
+SurfacePoint NodeMesh::point_at(uint32_t t, const Vec3& bary, bool back) const {
+  const auto& c = mesh_.triangles[t];
+  SurfacePoint p;
+  p.position = bary.x() * mesh_.positions[c[0]] + bary.y() * mesh_.positions[c[1]] + bary.z() * mesh_.positions[c[2]];
+  const int side = sides_ == Sides::both && back ? 3 : 0;
+  const auto& nodes = corner_nodes_[t];
+  const Vec3 n = bary.x() * nodes_[nodes[side]].normal + bary.y() * nodes_[nodes[side + 1]].normal +
+                 bary.z() * nodes_[nodes[side + 2]].normal;
+  const Vec3 face = back ? Vec3(-face_normal(t)) : face_normal(t);
+  p.geometric_normal = face;
+  p.normal = n.squaredNorm() > 0.0f ? Vec3(n.normalized()) : face;
+  p.prim = sources_[t];
+  return p;
+}
+
 Vec3 NodeMesh::interpolate(std::span<const Vec3> values, uint32_t t, const Vec3& bary, bool back) const {
   const int side = sides_ == Sides::both && back ? 3 : 0;
   const auto& nodes = corner_nodes_[t];
   return bary.x() * values[nodes[side]] + bary.y() * values[nodes[side + 1]] + bary.z() * values[nodes[side + 2]];
 }
 
-SurfacePoint NodeMesh::sample_point(size_t n, const Vec2& u, uint32_t pick) const {
+SurfacePoint NodeMesh::sample_point(size_t n, Rng& rng) const {
   const Node& node = nodes_[n];
-  const uint32_t t = node.triangles[pick % node.triangles.size()];
+  const auto area = [&](uint32_t t) {
+    const auto& c = mesh_.triangles[t];
+    return (mesh_.positions[c[1]] - mesh_.positions[c[0]]).cross(mesh_.positions[c[2]] - mesh_.positions[c[0]]).norm();
+  };
+  // A triangle by its area, then the vertex's barycentric coordinate by
+  // its density there, w(1 - w) (the hat times the uniform's), which is the
+  // middle of three uniform numbers; the rest of the point uniform.
+  float total = 0.0f;
+  for (uint32_t t : node.triangles) total += area(t);
+  float pick = rng.uniform() * total;
+  uint32_t t = node.triangles.back();
+  for (uint32_t candidate : node.triangles)
+    if ((pick -= area(candidate)) < 0.0f) {
+      t = candidate;
+      break;
+    }
+  const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+  const float w = std::max(std::min(u1, u2), std::min(std::max(u1, u2), u3));
+  const float s = rng.uniform();
   const auto& c = mesh_.triangles[t];
   int k = 0;
   while (c[k] != node.vertex) ++k;
   const Vec3 v = mesh_.positions[node.vertex];
   const Vec3 a = mesh_.positions[c[(k + 1) % 3]], b = mesh_.positions[c[(k + 2) % 3]];
   SurfacePoint p;
-  p.position = v + kCornerReach * u.x() * ((a - v) * u.y() + (b - v) * (1.0f - u.y()));
+  p.position = w * v + (1.0f - w) * (s * a + (1.0f - s) * b);
   p.normal = node.normal;
   const Vec3 face = face_normal(t);
   p.geometric_normal = face.dot(node.normal) >= 0.0f ? face : Vec3(-face);
@@ -120,7 +149,8 @@ SurfacePoint NodeMesh::sample_point(size_t n, const Vec2& u, uint32_t pick) cons
 
 RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, const RayScene& scene_rays,
                                  const RayScene& rays, const Lighting& lighting, const RadiosityOptions& options,
-                                 Progress& progress, const std::string& label, const std::optional<Vec3>& viewpoint)
+                                 Progress& progress, const std::string& label, const std::optional<Vec3>& viewpoint,
+                                 bool lights_at_hits)
     : scene_(scene), rays_per_node_(std::max(1, options.gather_rays)) {
   IntegratorOptions direct_only;
   direct_only.max_bounces = 0;  // lights and environment, no light from other surfaces
@@ -129,7 +159,9 @@ RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, c
 
   const size_t n_nodes = nodes.nodes();
   direct_.assign(n_nodes, Vec3::Zero());
+  lights_.assign(n_nodes, Vec3::Zero());
   std::vector<std::vector<Hit>> node_hits(n_nodes);
+  std::vector<std::vector<Vec3>> node_hit_lights(n_nodes);
   progress.begin(label, int64_t(n_nodes));
   const auto seen = [&](const SurfacePoint& p) {
     const Vec3 to_eye = *viewpoint - p.position;
@@ -143,20 +175,26 @@ RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, c
     // a few tries for one it sees.
     bool any_seen = viewpoint.has_value();
     const auto sample_point = [&](int i) {
-      SurfacePoint p = nodes.sample_point(n, rng.uniform2(), uint32_t(i));
+      SurfacePoint p = nodes.sample_point(n, rng);
       for (int tries = 0; any_seen && !seen(p); ++tries) {
         if (tries == kViewpointTries) {
           any_seen = i > 0;  // the first sample found none: the node is hidden, take any
           break;
         }
-        p = nodes.sample_point(n, rng.uniform2(), uint32_t(i + tries + 1));
+        p = nodes.sample_point(n, rng);
       }
       return p;
     };
-    Vec3 sum = Vec3::Zero();
+    Vec3 light_sum = Vec3::Zero(), environment_sum = Vec3::Zero();
     const int samples = std::max(1, options.light_samples);
-    for (int i = 0; i < samples; ++i) sum += integrator.illumination(sample_point(i), rng);
-    direct_[n] = sum * (kPi / float(samples));
+    for (int i = 0; i < samples; ++i) {
+      Vec3 from_lights, from_environment;
+      integrator.illumination(sample_point(i), rng, from_lights, from_environment);
+      light_sum += from_lights;
+      environment_sum += from_environment;
+    }
+    lights_[n] = light_sum * (kPi / float(samples));
+    direct_[n] = lights_[n] + environment_sum * (kPi / float(samples));
 
     std::vector<Hit>& hits = node_hits[n];
     for (int i = 0; i < rays_per_node_; ++i) {
@@ -166,7 +204,13 @@ RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, c
       SurfacePoint hit;
       if (!scene_rays.intersect(scene_rays.offset_origin(p, d), d, hit)) continue;  // the environment: in direct_
       const Vec3 b = scene.barycentric(hit.prim, hit.position);
-      hits.push_back({hit.prim, b.y(), b.z(), d.dot(scene.face_normal(hit.prim)) > 0.0f});
+      const bool back = d.dot(scene.face_normal(hit.prim)) > 0.0f;
+      hits.push_back({hit.prim, b.y(), b.z(), back});
+      if (lights_at_hits) {
+        Vec3 from_lights, from_environment;
+        integrator.illumination(scene.point_at(hit.prim, b, back), rng, from_lights, from_environment);
+        node_hit_lights[n].push_back(from_lights * kPi);
+      }
     }
     progress.advance();
   });
@@ -177,23 +221,29 @@ RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, c
   hits_.reserve(first_.back());
   for (auto& h : node_hits) hits_.insert(hits_.end(), h.begin(), h.end());
   hit_albedo_.assign(hits_.size(), Vec3::Ones());
+  if (lights_at_hits) {
+    hit_lights_.reserve(hits_.size());
+    for (auto& l : node_hit_lights) hit_lights_.insert(hit_lights_.end(), l.begin(), l.end());
+  }
 }
 
 void RadiosityGather::set_albedo(const SurfaceAlbedo& albedo) {
-  const TriangleMesh& mesh = scene_.mesh();
   tbb::parallel_for(size_t(0), hits_.size(), [&](size_t i) {
     const Hit& h = hits_[i];
-    const auto& c = mesh.triangles[h.triangle];
-    SurfacePoint p;
-    p.position = (1.0f - h.b1 - h.b2) * mesh.positions[c[0]] + h.b1 * mesh.positions[c[1]] + h.b2 * mesh.positions[c[2]];
-    p.normal = p.geometric_normal = h.back ? Vec3(-scene_.face_normal(h.triangle)) : scene_.face_normal(h.triangle);
-    p.prim = scene_.source(h.triangle);
-    hit_albedo_[i] = albedo.at(p);
+    hit_albedo_[i] = albedo.at(scene_.point_at(h.triangle, Vec3(1.0f - h.b1 - h.b2, h.b1, h.b2), h.back));
   });
 }
 
-std::vector<Vec3> RadiosityGather::gather(std::span<const Vec3> scene_irradiance) const {
+std::vector<Vec3> RadiosityGather::gather(std::span<const Vec3> scene_irradiance,
+                                          std::span<const Vec3> scene_lights) const {
   std::vector<Vec3> out(direct_.size());
+  // With the lights traced at the hits, the scene's nodes give only the rest.
+  std::vector<Vec3> rest;
+  if (!hit_lights_.empty()) {
+    rest.resize(scene_irradiance.size());
+    for (size_t n = 0; n < rest.size(); ++n) rest[n] = scene_irradiance[n] - scene_lights[n];
+    scene_irradiance = rest;
+  }
   // Cosine-distributed rays: the irradiance is pi x the mean radiance they
   // bring, and a diffuse surface's radiance is albedo x irradiance / pi.
   const float per_ray = 1.0f / float(rays_per_node_);
@@ -201,7 +251,8 @@ std::vector<Vec3> RadiosityGather::gather(std::span<const Vec3> scene_irradiance
     Vec3 sum = Vec3::Zero();
     for (uint32_t i = first_[n]; i < first_[n + 1]; ++i) {
       const Hit& h = hits_[i];
-      const Vec3 e = scene_.interpolate(scene_irradiance, h.triangle, Vec3(1.0f - h.b1 - h.b2, h.b1, h.b2), h.back);
+      Vec3 e = scene_.interpolate(scene_irradiance, h.triangle, Vec3(1.0f - h.b1 - h.b2, h.b1, h.b2), h.back);
+      if (!hit_lights_.empty()) e += hit_lights_[i];
       sum += hit_albedo_[i].cwiseProduct(e);
     }
     out[n] = direct_[n] + sum * per_ray;

@@ -21,6 +21,7 @@
 
 #include "core/image.h"
 #include "core/progress.h"
+#include "core/sampling.h"
 #include "render/gbuffer.h"
 #include "render/integrator.h"
 #include "render/ray_scene.h"
@@ -58,10 +59,18 @@ class NodeMesh {
   Vec3 barycentric(uint32_t triangle, const Vec3& point) const;
   // The triangle's unit normal by its winding.
   Vec3 face_normal(uint32_t triangle) const;
+  // The surface point at barycentric coordinates `bary` of a triangle, seen
+  // from its back or front: the nodes' normals interpolated; prim is the
+  // scene triangle.
+  SurfacePoint point_at(uint32_t triangle, const Vec3& bary, bool back) const;
 
-  // A surface point near node n (inside the corner of one of its triangles,
-  // `u` picking where), facing the node's side; prim is the scene triangle.
-  SurfacePoint sample_point(size_t n, const Vec2& u, uint32_t pick) const;
+  // A surface point of node n's triangles drawn with density proportional
+  // to its hat function (1 at the vertex, 0 at the triangles' far sides),
+  // facing the node's side; prim is the scene triangle. The mean over such
+  // points is the node's share of the light in the least-squares sense,
+  // which is what linear interpolation between nodes needs where the light
+  // bends (under an overhang, at the foot of a wall).
+  SurfacePoint sample_point(size_t n, Rng& rng) const;
 
  private:
   struct Node {
@@ -87,16 +96,26 @@ class RadiosityGather {
   // With `viewpoint`, a node's samples are taken only where the viewpoint
   // sees them (where it sees any): a vertex hidden under an object standing
   // on its surface would otherwise darken what is seen around it.
+  // With `lights_at_hits`, the light each hit point gets straight from the
+  // lights is traced there (a shadow ray per light) rather than interpolated
+  // from the scene's nodes: the view's final gather then sees the shadows on
+  // the surfaces around it as sharp as they are, however coarse the scene
+  // mesh (the shadow of a column on the ground that lights the column).
   RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, const RayScene& scene_rays, const RayScene& rays,
                   const Lighting& lighting, const RadiosityOptions& options, Progress& progress,
-                  const std::string& label, const std::optional<Vec3>& viewpoint = std::nullopt);
+                  const std::string& label, const std::optional<Vec3>& viewpoint = std::nullopt,
+                  bool lights_at_hits = false);
 
   // The albedo where each ray hit: call before gather() with another albedo.
   void set_albedo(const SurfaceAlbedo& albedo);
   // Each node's irradiance: its direct light plus the light of the rays' hit
-  // points, from the scene nodes' irradiance `scene_irradiance`.
-  std::vector<Vec3> gather(std::span<const Vec3> scene_irradiance) const;
+  // points, from the scene nodes' irradiance `scene_irradiance`, of which
+  // `scene_lights` is straight from the lights (needed with lights_at_hits).
+  std::vector<Vec3> gather(std::span<const Vec3> scene_irradiance, std::span<const Vec3> scene_lights = {}) const;
+  // Each node's irradiance from the lights and the environment, and the
+  // lights' part of it.
   const std::vector<Vec3>& direct() const { return direct_; }
+  const std::vector<Vec3>& lights() const { return lights_; }
 
  private:
   struct Hit {
@@ -107,9 +126,11 @@ class RadiosityGather {
   const NodeMesh& scene_;
   int rays_per_node_;
   std::vector<Vec3> direct_;     // irradiance from the lights and the environment
+  std::vector<Vec3> lights_;     // the lights' part of it
   std::vector<uint32_t> first_;  // node n's hits: [first_[n], first_[n + 1])
   std::vector<Hit> hits_;
   std::vector<Vec3> hit_albedo_;
+  std::vector<Vec3> hit_lights_;  // with lights_at_hits: irradiance from the lights at each hit
 };
 
 // The scene's irradiance at its nodes with the albedo `albedo` on every
