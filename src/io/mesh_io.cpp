@@ -7,14 +7,18 @@
 #include <assimp/scene.h>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string_view>
 #include <unordered_map>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/child_process.h"
 #include "io/input_file.h"
 
 namespace relight {
@@ -56,21 +60,51 @@ void make_faces_consistent(const aiScene& scene) {
   }
 }
 
-// Every element of a PLY body takes at least a byte: a header claiming more
-// elements than the file has bytes is corrupt, and Assimp would reserve
-// memory for all of them first (out of memory, found by fuzzing).
-void expect_plausible_ply_counts(const fs::path& path, std::string_view header) {
+// Every line of a PLY header (before end_header) is one of the format's
+// keywords with its words; Assimp's reader loops for ever on a header with
+// a line of junk (found by fuzzing). And every element of the body takes at
+// least a byte: a header claiming more elements than the file has bytes is
+// corrupt, and Assimp would reserve memory for all of them first (out of
+// memory, found by fuzzing).
+void expect_sound_ply_header_lines(const fs::path& path, std::string_view header) {
+  static const std::set<std::string, std::less<>> kTypes = {
+      "char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8",
+      "int16", "uint16", "int32", "uint32", "float32", "float64"};
+  const auto refuse = [&](int line, const std::string& why) {
+    throw InputError(path.string(), fmt::format("header line {}", line), why);
+  };
   const uintmax_t file_size = fs::file_size(path);
   std::istringstream lines{std::string(header)};
+  int number = 0;
   for (std::string line; std::getline(lines, line);) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    for (const unsigned char c : line)
+      if (c < 0x20 || c > 0x7e) refuse(number, "a PLY header line holds a byte that is not text");
     std::istringstream words(line);
-    std::string keyword, name, count_word;
-    if (!(words >> keyword >> name >> count_word) || keyword != "element") continue;
-    // Compared as a double: the count may be far beyond any integer type.
-    if (std::strtod(count_word.c_str(), nullptr) > double(file_size))
-      throw InputError(path.string(), "",
-                       "the PLY header claims " + count_word + " " + name +
-                           " elements, more than the file's " + std::to_string(file_size) + " bytes can hold");
+    std::vector<std::string> w;
+    for (std::string word; words >> word;) w.push_back(word);
+    if (number == 1) {
+      if (w != std::vector<std::string>{"ply"}) refuse(number, "a PLY file starts with a line 'ply'");
+      continue;
+    }
+    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (w[0] == "format") {
+      if (w.size() != 3) refuse(number, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+    } else if (w[0] == "element") {
+      if (w.size() != 3) refuse(number, "expected 'element NAME COUNT'");
+      // Compared as a double: the count may be far beyond any integer type.
+      if (std::strtod(w[2].c_str(), nullptr) > double(file_size))
+        throw InputError(path.string(), "",
+                         "the PLY header claims " + w[2] + " " + w[1] + " elements, more than the file's " +
+                             std::to_string(file_size) + " bytes can hold");
+    } else if (w[0] == "property") {
+      const bool list = w.size() == 5 && w[1] == "list" && kTypes.contains(w[2]) && kTypes.contains(w[3]);
+      if (!list && !(w.size() == 3 && kTypes.contains(w[1])))
+        refuse(number, "expected 'property TYPE NAME' or 'property list TYPE TYPE NAME' with a PLY type");
+    } else {
+      refuse(number, "'" + w[0] + "' is not a PLY header keyword");
+    }
   }
 }
 
@@ -88,7 +122,7 @@ void expect_sound_ply_header(const fs::path& path) {
   for (size_t at = head.find(key); at != std::string::npos; at = head.find(key, at + 1)) {
     const std::string_view rest = std::string_view(head).substr(at + key.size());
     if (rest.starts_with("\n") || rest.starts_with("\r\n")) {
-      expect_plausible_ply_counts(path, std::string_view(head).substr(0, at));
+      expect_sound_ply_header_lines(path, std::string_view(head).substr(0, at));
       return;
     }
   }
@@ -186,11 +220,11 @@ void save_obj(const fs::path& path, const TriangleMesh& mesh) {
   write_text_atomically(path, text);
 }
 
-TriangleMesh load_mesh(const fs::path& path) {
-  const std::string name = path.string();
-  expect_input_file(path, "a mesh file");
+namespace {
 
-  expect_sound_ply_header(path);
+// The file through Assimp, flattened to one mesh; throws InputError.
+TriangleMesh read_with_assimp(const fs::path& path) {
+  const std::string name = path.string();
   Assimp::Importer importer;
   // Import and validate first: a malformed file's inconsistent data would
   // trip Assimp's assertions (an abort) in the post-processing steps.
@@ -242,7 +276,85 @@ TriangleMesh load_mesh(const fs::path& path) {
       mesh.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
     }
   }
+  return mesh;
+}
+
+// What the reading child hands back: 'M' and the mesh's arrays, or 'E' and
+// the InputError's place and message.
+template <class T>
+void append_array(std::string& out, const std::vector<T>& v) {
+  const uint64_t n = v.size();
+  out.append(reinterpret_cast<const char*>(&n), sizeof n);
+  out.append(reinterpret_cast<const char*>(v.data()), n * sizeof(T));
+}
+
+template <class T>
+bool take_array(std::string_view& in, std::vector<T>& v) {
+  uint64_t n = 0;
+  if (in.size() < sizeof n) return false;
+  std::memcpy(&n, in.data(), sizeof n);
+  in.remove_prefix(sizeof n);
+  if (n > in.size() / sizeof(T)) return false;
+  v.resize(n);
+  std::memcpy(static_cast<void*>(v.data()), in.data(), n * sizeof(T));
+  in.remove_prefix(n * sizeof(T));
+  return true;
+}
+
+std::string encode_reading(const fs::path& path) {
+  std::string out;
+  try {
+    const TriangleMesh mesh = read_with_assimp(path);
+    out = "M";
+    append_array(out, mesh.positions);
+    append_array(out, mesh.normals);
+    append_array(out, mesh.triangles);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    const size_t prefix = e.file().size() + (e.where().empty() ? 0 : e.where().size() + 2) + 2;
+    out = "E" + e.where() + '\0' + what.substr(std::min(prefix, what.size()));
+  }
+  return out;
+}
+
+TriangleMesh decode_reading(const std::string& name, std::string_view in) {
+  if (!in.empty() && in[0] == 'E') {
+    in.remove_prefix(1);
+    const size_t split = in.find('\0');
+    throw InputError(name, std::string(in.substr(0, split)),
+                     split == std::string_view::npos ? "unreadable" : std::string(in.substr(split + 1)));
+  }
+  TriangleMesh mesh;
+  if (in.empty() || in[0] != 'M') throw InputError(name, "", "the mesh reader returned nothing");
+  in.remove_prefix(1);
+  if (!take_array(in, mesh.positions) || !take_array(in, mesh.normals) || !take_array(in, mesh.triangles))
+    throw InputError(name, "", "the mesh reader returned a cut-off mesh");
+  return mesh;
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const fs::path& path) {
+  const std::string name = path.string();
+  expect_input_file(path, "a mesh file");
+  expect_sound_ply_header(path);
+  // Assimp's readers crash or hang on some malformed files (several found
+  // by fuzzing, in PLY, OFF and STL); reading in a child process turns those
+  // into an error about the file. A minute plus two seconds per megabyte is
+  // far beyond what a sound file takes.
+  const auto limit = std::chrono::seconds(60 + 2 * (fs::file_size(path) >> 20));
+  const ChildResult read = run_in_child([&] { return encode_reading(path); }, limit);
+  if (!read.ok)
+    throw InputError(name, "", "the mesh reader " + read.failure +
+                                   " on this file: it is malformed, or export it again (OBJ is the safest)");
+  TriangleMesh mesh = decode_reading(name, read.bytes);
+
   if (mesh.triangles.empty()) throw InputError(name, "", "the mesh has no triangles");
+  for (const auto& t : mesh.triangles)
+    for (uint32_t i : t)
+      if (i >= mesh.positions.size()) throw InputError(name, "", "the mesh reader returned a face past the vertices");
+  if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
+    throw InputError(name, "", "the mesh reader returned normals that do not match the vertices");
   drop_degenerate_triangles(name, mesh);
   if (const size_t edges = count_non_manifold_edges(mesh))
     spdlog::warn("{}: {} edge{} shared by three or more triangles (non-manifold); rendered as two-sided surfaces",
