@@ -340,9 +340,10 @@ TriangleMesh load_mesh(const fs::path& path) {
   expect_sound_ply_header(path);
   // Assimp's readers crash or hang on some malformed files (several found
   // by fuzzing, in PLY, OFF and STL); reading in a child process turns those
-  // into an error about the file. A minute plus two seconds per megabyte is
-  // far beyond what a sound file takes.
-  const auto limit = std::chrono::seconds(60 + 2 * (fs::file_size(path) >> 20));
+  // into an error about the file. 20 s plus 2 s per megabyte is far beyond
+  // what a sound file takes (a 1M-triangle OBJ reads in a few seconds), and
+  // under the fuzzers' 30 s limit for one input.
+  const auto limit = std::chrono::seconds(20 + 2 * (fs::file_size(path) >> 20));
   const ChildResult read = run_in_child([&] { return encode_reading(path); }, limit);
   if (!read.ok)
     throw InputError(name, "", "the mesh reader " + read.failure +
