@@ -285,7 +285,7 @@ template <class T>
 void append_array(std::string& out, const std::vector<T>& v) {
   const uint64_t n = v.size();
   out.append(reinterpret_cast<const char*>(&n), sizeof n);
-  out.append(reinterpret_cast<const char*>(v.data()), n * sizeof(T));
+  if (n) out.append(reinterpret_cast<const char*>(v.data()), n * sizeof(T));
 }
 
 template <class T>
@@ -296,7 +296,7 @@ bool take_array(std::string_view& in, std::vector<T>& v) {
   in.remove_prefix(sizeof n);
   if (n > in.size() / sizeof(T)) return false;
   v.resize(n);
-  std::memcpy(static_cast<void*>(v.data()), in.data(), n * sizeof(T));
+  if (n) std::memcpy(static_cast<void*>(v.data()), in.data(), n * sizeof(T));
   in.remove_prefix(n * sizeof(T));
   return true;
 }
