@@ -64,8 +64,8 @@ TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
 }
 
 // --method radiosity at its defaults (the lights' direct light per pixel at
-// the fewest paths, 9: one per G-buffer sample). Measured 29.6 dB (outdoor)
-// and 27.7 dB (bookcase), docs/benchmarks.md "Radiosity against path
+// the fewest paths, 9: one per G-buffer sample). Measured 29.8 dB (outdoor)
+// and 27.6 dB (bookcase), docs/benchmarks.md "Radiosity against path
 // tracing"; asserted with a margin for the noise of other seeds.
 TEST_P(ReferenceScene, RadiosityAlbedo) {
   const fs::path folder = relight::test::reference_scenes_folder() / GetParam();

@@ -61,6 +61,7 @@ RadiosityIllumination::RadiosityIllumination(const Scene& scene, const RayScene&
                view_->mesh().triangles.size(), view_->nodes(), scene_->mesh().triangles.size(), scene_->nodes());
   scene_gather_ = std::make_unique<RadiosityGather>(*scene_, *scene_, *scene_rays_, rays, lighting, options, progress,
                                                     "radiosity: scene nodes");
+  Lighting view_lighting = lighting;  // what reaches the view's nodes
   if (direct_per_pixel) {
     Lighting lights_only = lighting;
     lights_only.environment = Environment::constant(Vec3::Zero());
@@ -68,10 +69,11 @@ RadiosityIllumination::RadiosityIllumination(const Scene& scene, const RayScene&
     no_bounce.max_bounces = 0;
     const Integrator integrator(rays, lights_only, nullptr, no_bounce);
     direct_ = render_illumination(gbuffer, scene.camera, integrator, pixel_options, progress, "direct light").surface;
+    view_lighting.lights.clear();  // traced per pixel instead
   }
-  view_gather_ = std::make_unique<RadiosityGather>(*view_, *scene_, *scene_rays_, rays, lighting, options,
+  view_gather_ = std::make_unique<RadiosityGather>(*view_, *scene_, *scene_rays_, rays, view_lighting, options,
                                                    progress, "radiosity: view nodes", scene.camera.position(),
-                                                   /*lights_at_hits=*/true);
+                                                   &lighting);
   const Integrator environment(rays, lighting, nullptr);
   background_ = render_background(gbuffer, scene.camera, environment);
 }
@@ -83,11 +85,9 @@ IlluminationImages RadiosityIllumination::render(const SurfaceAlbedo& albedo) {
   const int bounces = solve_radiosity(*scene_gather_, options_, scene_irradiance);
   spdlog::debug("radiosity: {} bounces between scene nodes", bounces);
   // The view's final gather is the last bounce; with none, the nodes' direct light alone.
-  std::vector<Vec3> view_irradiance = options_.max_bounces > 0
+  const std::vector<Vec3> view_irradiance = options_.max_bounces > 0
                                           ? view_gather_->gather(scene_irradiance, scene_gather_->lights())
                                           : view_gather_->direct();
-  if (!direct_.empty())  // the lights' part is traced per pixel instead
-    for (size_t n = 0; n < view_irradiance.size(); ++n) view_irradiance[n] -= view_gather_->lights()[n];
   IlluminationImages out{illumination_from_nodes(gbuffer_, camera_, *view_, *view_rays_, view_irradiance),
                          background_};
   if (!direct_.empty())

@@ -14,7 +14,7 @@ namespace {
 constexpr float kSameNodeCos = 0.94f;
 constexpr uint32_t kNoNode = UINT32_MAX;
 // Sample points drawn before a node is taken for hidden from the viewpoint.
-constexpr int kViewpointTries = 8;
+constexpr int kViewpointTries = 2;
 
 // The barycentric coordinates of a point on triangle t of a mesh (the
 // centre's for a degenerate triangle).
@@ -150,12 +150,19 @@ SurfacePoint NodeMesh::sample_point(size_t n, Rng& rng) const {
 RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, const RayScene& scene_rays,
                                  const RayScene& rays, const Lighting& lighting, const RadiosityOptions& options,
                                  Progress& progress, const std::string& label, const std::optional<Vec3>& viewpoint,
-                                 bool lights_at_hits)
+                                 const Lighting* lights_at_hits)
     : scene_(scene), rays_per_node_(std::max(1, options.gather_rays)) {
   IntegratorOptions direct_only;
   direct_only.max_bounces = 0;  // lights and environment, no light from other surfaces
   const WhiteAlbedo white;
   const Integrator integrator(rays, lighting, &white, direct_only);
+  // At the hits only the lights are wanted: no environment sample there.
+  Lighting hit_lighting;
+  std::optional<Integrator> hit_integrator;
+  if (lights_at_hits) {
+    hit_lighting.lights = lights_at_hits->lights;
+    hit_integrator.emplace(rays, hit_lighting, &white, direct_only);
+  }
 
   const size_t n_nodes = nodes.nodes();
   direct_.assign(n_nodes, Vec3::Zero());
@@ -208,7 +215,7 @@ RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, c
       hits.push_back({hit.prim, b.y(), b.z(), back});
       if (lights_at_hits) {
         Vec3 from_lights, from_environment;
-        integrator.illumination(scene.point_at(hit.prim, b, back), rng, from_lights, from_environment);
+        hit_integrator->illumination(scene.point_at(hit.prim, b, back), rng, from_lights, from_environment);
         node_hit_lights[n].push_back(from_lights * kPi);
       }
     }

@@ -96,15 +96,16 @@ class RadiosityGather {
   // With `viewpoint`, a node's samples are taken only where the viewpoint
   // sees them (where it sees any): a vertex hidden under an object standing
   // on its surface would otherwise darken what is seen around it.
-  // With `lights_at_hits`, the light each hit point gets straight from the
-  // lights is traced there (a shadow ray per light) rather than interpolated
-  // from the scene's nodes: the view's final gather then sees the shadows on
-  // the surfaces around it as sharp as they are, however coarse the scene
-  // mesh (the shadow of a column on the ground that lights the column).
+  // With `lights_at_hits`, the light each hit point gets straight from
+  // those lights is traced there (a shadow ray per light) rather than
+  // interpolated from the scene's nodes: the view's final gather then sees
+  // the shadows on the surfaces around it as sharp as they are, however
+  // coarse the scene mesh (the shadow of a column on the ground that lights
+  // the column). `lighting` is what reaches the nodes themselves.
   RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, const RayScene& scene_rays, const RayScene& rays,
                   const Lighting& lighting, const RadiosityOptions& options, Progress& progress,
                   const std::string& label, const std::optional<Vec3>& viewpoint = std::nullopt,
-                  bool lights_at_hits = false);
+                  const Lighting* lights_at_hits = nullptr);
 
   // The albedo where each ray hit: call before gather() with another albedo.
   void set_albedo(const SurfaceAlbedo& albedo);
