@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include "io/image_io.h"
 #include "io/scene_io.h"
@@ -28,20 +29,35 @@ double relit_psnr(const Image& image, const fs::path& reference) {
   return psnr(tonemap_reinhard_srgb(image), tonemap_reinhard_srgb(read_image(reference)));
 }
 
-class ReferenceScene : public testing::TestWithParam<std::string> {};
+// The reference scene of the test's parameter, analysed.
+class ReferenceScene : public testing::TestWithParam<std::string> {
+ protected:
+  fs::path folder() const { return relight::test::reference_scenes_folder() / GetParam(); }
+  bool present() const { return fs::exists(folder() / "scene.json"); }
+
+  // Loads the scene and analyses it with `options` (the scene's default
+  // strategy); the G-buffer and rays stay for later renders.
+  void analyse(AnalysisOptions options) {
+    scene = load_scene(folder() / "scene.json");
+    options.strategy = default_strategy(scene);
+    rays = std::make_unique<RayScene>(scene.mesh);
+    gbuffer = std::make_unique<GBuffer>(scene_gbuffer(scene, *rays, options));
+    analysis = analyze(scene, *rays, *gbuffer, options, Progress::silent());
+  }
+
+  Scene scene;
+  std::unique_ptr<RayScene> rays;
+  std::unique_ptr<GBuffer> gbuffer;
+  Analysis analysis;
+};
 
 TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
-  const fs::path folder = relight::test::reference_scenes_folder() / GetParam();
-  if (!fs::exists(folder / "scene.json"))
-    GTEST_SKIP() << "reference scene " << folder << " not found (set RELIGHT_SCENES to the scenes folder)";
-
-  const Scene scene = load_scene(folder / "scene.json");
-  AnalysisOptions options;
-  options.strategy = default_strategy(scene);
-  options.paths_per_pixel = 32;
-  const RayScene rays(scene.mesh);
-  const GBuffer gbuffer = scene_gbuffer(scene, rays, options);
-  const Analysis analysis = analyze(scene, rays, gbuffer, options, Progress::silent());
+  if (!present()) GTEST_SKIP() << "reference scene " << folder() << " not found (set RELIGHT_SCENES to the scenes folder)";
+  AnalysisOptions analysis_options;
+  analysis_options.paths_per_pixel = 32;
+  analyse(analysis_options);
+  const AnalysisOptions& options = analysis.options;
+  const fs::path folder = this->folder();
 
   const double albedo = albedo_psnr(analysis.albedo.albedo_coverage, folder);
   std::printf("[ figures  ] %s albedo PSNR %.2f dB (%s, %d spp, %d renders)\n", GetParam().c_str(), albedo,
@@ -54,7 +70,7 @@ TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
     const Rig rig = load_rig(entry.path());
     RenderOptions render_options;
     render_options.paths_per_pixel = options.paths_per_pixel;
-    const Image relit = render_rig(scene, rays, gbuffer, analysis, rig, render_options, Progress::silent());
+    const Image relit = render_rig(scene, *rays, *gbuffer, analysis, rig, render_options, Progress::silent());
     const double db = relit_psnr(relit, folder / "relit" / (name + ".exr"));
     std::printf("[ figures  ] %s rig %s re-lit PSNR %.2f dB\n", GetParam().c_str(), name.c_str(), db);
     EXPECT_GE(db, name == "same" ? 40.0 : 30.0) << "rig " << name;
@@ -68,18 +84,12 @@ TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
 // and 27.6 dB (bookcase), docs/benchmarks.md "Radiosity against path
 // tracing"; asserted with a margin for the noise of other seeds.
 TEST_P(ReferenceScene, RadiosityAlbedo) {
-  const fs::path folder = relight::test::reference_scenes_folder() / GetParam();
-  if (!fs::exists(folder / "scene.json"))
-    GTEST_SKIP() << "reference scene " << folder << " not found (set RELIGHT_SCENES to the scenes folder)";
-  const Scene scene = load_scene(folder / "scene.json");
+  if (!present()) GTEST_SKIP() << "reference scene " << folder() << " not found (set RELIGHT_SCENES to the scenes folder)";
   AnalysisOptions options;
   options.method = AnalysisMethod::radiosity;
-  options.strategy = default_strategy(scene);
   options.paths_per_pixel = 9;
-  const RayScene rays(scene.mesh);
-  const GBuffer gbuffer = scene_gbuffer(scene, rays, options);
-  const Analysis analysis = analyze(scene, rays, gbuffer, options, Progress::silent());
-  const double albedo = albedo_psnr(analysis.albedo.albedo_coverage, folder);
+  analyse(options);
+  const double albedo = albedo_psnr(analysis.albedo.albedo_coverage, folder());
   std::printf("[ figures  ] %s radiosity albedo PSNR %.2f dB\n", GetParam().c_str(), albedo);
   EXPECT_GE(albedo, GetParam() == "outdoor" ? 29.0 : 27.0);
 }

@@ -140,7 +140,7 @@ TEST(Radiosity, APointLightGivesTheInverseSquareIrradianceBelowIt) {
   light.power = 100.0f;
   lighting.lights = {light};
   RadiosityOptions options;
-  options.light_samples = 4;
+  options.light_samples = 256;  // spread over each node's triangles (its hat function)
   const Solved s = solve(plane, rays, lighting, options, 0.25f);
   // FORMAT.md: a point light of power P gives E = P cos / (4 pi d^2).
   const auto expected = [&](float x, float y) {

@@ -144,14 +144,7 @@ TEST(PointAtImageFraction, LandsOnTheSplitPixel) {
 // The top view of clip_test over a plane, its photo lit left of image
 // column 37 and in shadow right of it.
 struct ShadowedPlane {
-  Camera camera = [] {
-    CameraSpec spec;
-    spec.position = {0, 0, 5};
-    spec.look_at = {0, 0, 0};
-    spec.up = {0, 1, 0};
-    spec.vfov_deg = 90;
-    return Camera(spec, 100, 100);
-  }();
+  Camera camera = test::top_view();
   ConnectivityMesh mesh = [this] {
     TriangleMesh m;
     m.positions = {{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}};  // fills the view exactly

@@ -63,8 +63,7 @@ RadiosityIllumination::RadiosityIllumination(const Scene& scene, const RayScene&
                                                     "radiosity: scene nodes");
   Lighting view_lighting = lighting;  // what reaches the view's nodes
   if (direct_per_pixel) {
-    Lighting lights_only = lighting;
-    lights_only.environment = Environment::constant(Vec3::Zero());
+    const Lighting lights_only = lighting.lights_only();
     IntegratorOptions no_bounce;
     no_bounce.max_bounces = 0;
     const Integrator integrator(rays, lights_only, nullptr, no_bounce);

@@ -14,7 +14,6 @@
 #include <set>
 #include <sstream>
 #include <string_view>
-#include <unordered_map>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -175,17 +174,7 @@ std::vector<size_t> degenerate_triangles(const TriangleMesh& mesh) {
 }
 
 size_t count_non_manifold_edges(const TriangleMesh& mesh) {
-  // Vertices at the same position are one (files repeat them where normals
-  // or texture coordinates differ).
-  struct PositionHash {
-    size_t operator()(const Vec3& p) const {
-      return std::hash<float>()(p.x()) ^ (std::hash<float>()(p.y()) << 1) ^ (std::hash<float>()(p.z()) << 2);
-    }
-  };
-  std::unordered_map<Vec3, uint32_t, PositionHash> id;
-  std::vector<uint32_t> vertex(mesh.positions.size());
-  for (size_t v = 0; v < mesh.positions.size(); ++v)
-    vertex[v] = id.try_emplace(mesh.positions[v], uint32_t(id.size())).first->second;
+  const std::vector<uint32_t> vertex = same_position_ids(mesh.positions);
   std::vector<uint64_t> edges;
   edges.reserve(3 * mesh.triangles.size());
   for (const auto& t : mesh.triangles)
@@ -310,9 +299,7 @@ std::string encode_reading(const fs::path& path) {
     append_array(out, mesh.normals);
     append_array(out, mesh.triangles);
   } catch (const InputError& e) {
-    const std::string what = e.what();
-    const size_t prefix = e.file().size() + (e.where().empty() ? 0 : e.where().size() + 2) + 2;
-    out = "E" + e.where() + '\0' + what.substr(std::min(prefix, what.size()));
+    out = "E" + e.where() + '\0' + e.message();
   }
   return out;
 }

@@ -31,20 +31,8 @@ std::vector<uint32_t> weld_map(const std::vector<Vec3>& positions, float distanc
   struct CellEq {
     bool operator()(const Eigen::Vector3i& a, const Eigen::Vector3i& b) const { return a == b; }
   };
+  if (distance <= 0.0f) return same_position_ids(positions);
   std::vector<uint32_t> map(positions.size());
-  if (distance <= 0.0f) {
-    struct PosHash {
-      size_t operator()(const Vec3& p) const {
-        return std::hash<float>()(p.x()) ^ (std::hash<float>()(p.y()) << 1) ^ (std::hash<float>()(p.z()) << 2);
-      }
-    };
-    struct PosEq {
-      bool operator()(const Vec3& a, const Vec3& b) const { return a == b; }
-    };
-    std::unordered_map<Vec3, uint32_t, PosHash, PosEq> first;
-    for (size_t i = 0; i < positions.size(); ++i) map[i] = first.try_emplace(positions[i], uint32_t(i)).first->second;
-    return map;
-  }
   std::unordered_map<Eigen::Vector3i, std::vector<uint32_t>, CellHash, CellEq> grid;
   for (size_t i = 0; i < positions.size(); ++i) {
     const Eigen::Vector3i cell = (positions[i] / distance).array().floor().cast<int>();

@@ -60,6 +60,9 @@ void Integrator::illumination(const SurfacePoint& start, Rng& rng, Vec3& direct,
     if (bounce > 0) result += throughput.cwiseProduct(from_lights(p, rng));
     result += throughput.cwiseProduct(from_environment(p, probe, rng));
 
+    // The last bounce's ray can only bring the environment (its MIS half):
+    // with none, it is not cast.
+    if (bounce >= options_.max_bounces && env.is_black()) break;
     // Continue the path by a cosine-weighted bounce; its estimator weight
     // (albedo x cos/pi / pdf) is just the albedo.
     const Vec3 d = to_world(sample_cosine_hemisphere(rng.uniform2()), p.normal);

@@ -31,6 +31,9 @@ class WhiteAlbedo final : public SurfaceAlbedo {
 struct Lighting {
   std::vector<Light> lights;  // disabled lights are skipped
   Environment environment = Environment::constant(Vec3::Zero());
+
+  // The lights alone, with no environment.
+  Lighting lights_only() const { return {lights, Environment::constant(Vec3::Zero())}; }
 };
 
 struct IntegratorOptions {

@@ -157,12 +157,9 @@ RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, c
   const WhiteAlbedo white;
   const Integrator integrator(rays, lighting, &white, direct_only);
   // At the hits only the lights are wanted: no environment sample there.
-  Lighting hit_lighting;
+  const Lighting hit_lighting = lights_at_hits ? lights_at_hits->lights_only() : Lighting{};
   std::optional<Integrator> hit_integrator;
-  if (lights_at_hits) {
-    hit_lighting.lights = lights_at_hits->lights;
-    hit_integrator.emplace(rays, hit_lighting, &white, direct_only);
-  }
+  if (lights_at_hits) hit_integrator.emplace(rays, hit_lighting, &white, direct_only);
 
   const size_t n_nodes = nodes.nodes();
   direct_.assign(n_nodes, Vec3::Zero());

@@ -23,4 +23,9 @@ struct TriangleMesh {
   }
 };
 
+// For each position, the index of the first position exactly equal to it:
+// the vertices a file repeats where normals or texture coordinates differ
+// are one point.
+std::vector<uint32_t> same_position_ids(const std::vector<Vec3>& positions);
+
 }  // namespace relight
