@@ -86,6 +86,19 @@ TEST(NodeMesh, InterpolatesLinearlyAndPicksTheSide) {
   EXPECT_EQ(mesh.interpolate(values, 1, Vec3(1, 0, 0), false), at_corner);  // corner 0 is shared
 }
 
+TEST(NodeMesh, TakesTheSideTheViewpointSeesFromTheFaceNotTheShadingNormal) {
+  // Near a silhouette a smooth surface's shading normal can turn away from
+  // the viewer while its face still faces it: the node must stay on the
+  // face's seen side (+z here), not flip under the surface.
+  TriangleMesh grazing = square(1);
+  const Vec3 tilted = Vec3(0.99f, 0.0f, 0.14f).normalized();
+  grazing.normals.assign(4, tilted);
+  const NodeMesh mesh(grazing, {0, 1}, grazing, NodeMesh::Sides::facing_viewpoint, Vec3(-10, 0, 1));
+  const SurfacePoint p = mesh.point_at(0, Vec3::Constant(1.0f / 3.0f), false);
+  EXPECT_NEAR(p.normal.dot(tilted), 1.0f, 1e-5f);
+  EXPECT_GT(p.geometric_normal.z(), 0.0f);
+}
+
 struct Solved {
   std::unique_ptr<NodeMesh> nodes;
   std::unique_ptr<RayScene> rays;

@@ -101,6 +101,28 @@ TEST(Rng, UniformIsInUnitIntervalWithUniformHistogram) {
   expect_chi_square_ok(x2, dof);
 }
 
+// ---------------------------------------------------- Hammersley points
+
+TEST(Hammersley, ShiftedPointsFillEveryRowAndColumnOfTheGridOnce) {
+  // 256 points, shifted anywhere, still put one point in each of 16 x 16
+  // strata's rows of 1/256 in x, and 16 in each 1/16-wide column of y.
+  const int n = 256;
+  for (const Vec2& shift : {Vec2(0.0f, 0.0f), Vec2(0.37f, 0.91f), Vec2(0.999f, 0.5f)}) {
+    std::vector<int> rows(n, 0), columns(16, 0);
+    for (int i = 0; i < n; ++i) {
+      const Vec2 p = shifted(hammersley(i, n), shift);
+      ASSERT_GE(p.minCoeff(), 0.0f);
+      ASSERT_LT(p.maxCoeff(), 1.0f);
+      ++rows[int(p.x() * n)];
+      ++columns[int(p.y() * 16)];
+    }
+    EXPECT_EQ(*std::min_element(rows.begin(), rows.end()), 1);
+    EXPECT_EQ(*std::max_element(rows.begin(), rows.end()), 1);
+    EXPECT_EQ(*std::min_element(columns.begin(), columns.end()), 16);
+    EXPECT_EQ(*std::max_element(columns.begin(), columns.end()), 16);
+  }
+}
+
 // ---------------------------------------------------- Distribution1D
 
 TEST(Distribution1D, PdfIsWeightOverMean) {

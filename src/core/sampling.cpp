@@ -21,6 +21,23 @@ Rng::Rng(uint64_t seed, uint64_t a, uint64_t b) {
   next_u32();
 }
 
+Vec2 hammersley(int i, int n) {
+  uint32_t bits = uint32_t(i);
+  bits = (bits << 16u) | (bits >> 16u);
+  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+  return {(float(i) + 0.5f) / float(n), float(bits) * 2.3283064365386963e-10f};
+}
+
+Vec2 shifted(const Vec2& point, const Vec2& shift) {
+  Vec2 p = point + shift;
+  for (int k = 0; k < 2; ++k)
+    if (p[k] >= 1.0f) p[k] -= 1.0f;
+  return p.cwiseMin(0x1.fffffep-1f);  // float rounding must not reach 1
+}
+
 uint32_t Rng::next_u32() {
   const uint64_t old = state_;
   state_ = old * 6364136223846793005ULL + inc_;

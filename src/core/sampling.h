@@ -25,6 +25,13 @@ class Rng {
   uint64_t state_, inc_;
 };
 
+// Hammersley point i of n in [0,1)^2: n well-spread points (each of n
+// equal rows holds one, and so does each of the radical inverse's cells).
+Vec2 hammersley(int i, int n);
+// The point shifted by `shift` modulo 1 (Cranley-Patterson rotation): a
+// random shift per use keeps the spread and removes the bias of fixed points.
+Vec2 shifted(const Vec2& point, const Vec2& shift);
+
 // Cosine-weighted direction about +z; pdf = cos(theta)/pi.
 Vec3 sample_cosine_hemisphere(const Vec2& u);
 // Uniform point on the unit disc (concentric map).

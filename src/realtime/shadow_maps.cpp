@@ -289,17 +289,6 @@ std::array<Vec3, 8> corners(const Eigen::AlignedBox3f& box) {
   return c;
 }
 
-// Hammersley point i of n in [0,1)^2: well-spread fixed samples of a light.
-Vec2 hammersley(int i, int n) {
-  uint32_t bits = uint32_t(i);
-  bits = (bits << 16u) | (bits >> 16u);
-  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-  return {(float(i) + 0.5f) / float(n), float(bits) * 2.3283064365386963e-10f};
-}
-
 // One fixed sample of a light and the shadow map that goes with it.
 struct LightSamplePoint {
   enum class Map { cube, perspective, orthographic } map = Map::cube;

@@ -57,7 +57,9 @@ NodeMesh::NodeMesh(TriangleMesh mesh, std::vector<uint32_t> sources, const Trian
         add_corner(t, k, 0, n);
         add_corner(t, k, 1, -n);
       } else {
-        add_corner(t, k, 0, n.dot(viewpoint - p) >= 0.0f ? n : Vec3(-n));
+        // The side the viewpoint sees is the face's: a shading normal can
+        // turn away from the viewer near a silhouette while the face does not.
+        add_corner(t, k, 0, face.dot(viewpoint - p) >= 0.0f ? n : Vec3(-n));
       }
     }
   }
@@ -201,9 +203,11 @@ RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, c
     direct_[n] = lights_[n] + environment_sum * (kPi / float(samples));
 
     std::vector<Hit>& hits = node_hits[n];
+    // Directions well spread over the hemisphere: far less noise than independent ones.
+    const Vec2 shift = rng.uniform2();
     for (int i = 0; i < rays_per_node_; ++i) {
       const SurfacePoint p = sample_point(i);
-      const Vec3 d = to_world(sample_cosine_hemisphere(rng.uniform2()), p.normal);
+      const Vec3 d = to_world(sample_cosine_hemisphere(shifted(hammersley(i, rays_per_node_), shift)), p.normal);
       if (d.dot(p.geometric_normal) <= 0.0f) continue;  // below the actual surface: no light
       SurfacePoint hit;
       if (!scene_rays.intersect(scene_rays.offset_origin(p, d), d, hit)) continue;  // the environment: in direct_
