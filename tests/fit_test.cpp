@@ -71,9 +71,11 @@ TEST_P(FitReference, RecoversPowerAndBackground) {
 
 // The bookcase's soft lamp casts too few sharp shadows to fit the background
 // from; it comes from the probe's mean radiance, which sees only part of the
-// room's environment (the rest is behind the wall and floor): 25 %.
+// room's environment (the rest is behind the wall and floor, and filled from
+// what the probe sees): 10-30 % high, 35 % allowed. docs/algorithms.md
+// section 7.
 INSTANTIATE_TEST_SUITE_P(Scenes, FitReference,
-                         testing::Values(Case{"outdoor", 1.75f, 1.3f, 0.10f}, Case{"bookcase", 0.55f, 0.7f, 0.25f}),
+                         testing::Values(Case{"outdoor", 1.75f, 1.3f, 0.10f}, Case{"bookcase", 0.55f, 0.7f, 0.35f}),
                          [](const auto& info) { return info.param.scene; });
 
 }  // namespace

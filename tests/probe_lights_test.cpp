@@ -84,6 +84,62 @@ TEST(ProbeLights, TwoProbesTriangulateALamp) {
   EXPECT_FALSE(triangulate(a, Vec3(1, 0, 0), b, Vec3(1, 0, 0)));
 }
 
+// A 64x32 equirect probe at the origin of a sky of radiance 1 over a 6 x 6 m
+// floor 1 m below, which it shows at radiance 5; each pixel the mean over
+// its square (8 x 8 samples), so pixels on the floor's edge mix the two.
+// `coverage`: each pixel's share of floor.
+Probe probe_over_a_floor(const RayScene& floor, std::vector<float>& coverage) {
+  Probe p;
+  p.image = Image(64, 32);
+  coverage.assign(p.image.size(), 0.0f);
+  const ProbeFrame frame(p.forward, p.up);
+  SurfacePoint hit;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) {
+      int on_floor = 0;
+      for (int s = 0; s < 64; ++s) {
+        const Vec2 uv((x + (s % 8 + 0.5f) / 8) / 64, (y + (s / 8 + 0.5f) / 8) / 32);
+        on_floor += floor.intersect(Vec3::Zero(), *probe_uv_to_direction(ProbeMapping::equirect, frame, uv), hit);
+      }
+      coverage[size_t(y) * 64 + x] = float(on_floor) / 64.0f;
+      p.image.at(x, y) = Vec3::Constant(1.0f + 4.0f * coverage[size_t(y) * 64 + x]);
+    }
+  return p;
+}
+
+TriangleMesh floor_below_origin() {
+  TriangleMesh m;
+  m.positions = {{-3, -3, -1}, {3, -3, -1}, {3, 3, -1}, {-3, 3, -1}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return m;
+}
+
+TEST(ProbeCleanup, PixelsThatShowAnyGeometryTakeTheFillAndTheRestStay) {
+  const TriangleMesh mesh = floor_below_origin();
+  const RayScene floor(mesh);
+  std::vector<float> coverage;
+  const Probe raw = probe_over_a_floor(floor, coverage);
+  const Vec3 fill(0.3f, 0.4f, 0.5f);
+  const Probe cleaned = remove_local_geometry_from_probe(raw, floor, fill);
+  int mixed = 0;
+  for (size_t i = 0; i < coverage.size(); ++i) {
+    if (coverage[i] == 0.0f) EXPECT_EQ(cleaned.image.pixels[i], Vec3::Ones()) << "pixel " << i;
+    if (coverage[i] >= 0.1f) EXPECT_EQ(cleaned.image.pixels[i], fill) << "pixel " << i << ", " << coverage[i] << " floor";
+    mixed += coverage[i] > 0.0f && coverage[i] < 1.0f;
+  }
+  EXPECT_GT(mixed, 16);  // the floor's edge crosses pixels: the case that matters
+}
+
+TEST(ProbeCleanup, WithoutAFillTheSkyFillsWhatTheFloorHid) {
+  // The floor's edge pixels must not bleed its radiance into the fill.
+  const TriangleMesh mesh = floor_below_origin();
+  const RayScene floor(mesh);
+  std::vector<float> coverage;
+  const Probe cleaned = remove_local_geometry_from_probe(probe_over_a_floor(floor, coverage), floor);
+  for (size_t i = 0; i < coverage.size(); ++i)
+    EXPECT_NEAR(cleaned.image.pixels[i].maxCoeff(), 1.0f, 1e-5f) << "pixel " << i << ", " << coverage[i] << " floor";
+}
+
 // The reference probes see the real lamp and sun: the power and colour they
 // imply match the scene's within 10 %.
 class ReferenceProbe : public testing::TestWithParam<std::string> {};

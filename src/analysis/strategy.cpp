@@ -35,9 +35,12 @@ void check_strategy(const Scene& scene, Strategy strategy) {
 
 Environment strategy_environment(const Scene& scene, const RayScene& rays, Strategy strategy) {
   if (strategy == Strategy::lights) return Environment::constant(scene.background);
+  // What the probes cannot see takes the scene's background, where it gives one.
+  const std::optional<Vec3> unseen =
+      scene.background.isZero() ? std::nullopt : std::optional<Vec3>(scene.background);
   std::vector<Probe> cleaned;
   for (const auto& p : scene.probes) {
-    Probe distant = remove_local_geometry_from_probe(p, rays);
+    Probe distant = remove_local_geometry_from_probe(p, rays, unseen);
     cleaned.push_back(strategy == Strategy::combined ? remove_lights_from_probe(distant, scene.lights) : distant);
   }
   return Environment::from_probes(cleaned);

@@ -36,19 +36,27 @@ Light unit_light(const Light& light) {
 
 namespace {
 
-// Per-thread buffers of one row's shadow rays.
+// Per-thread state of one row: its pixels' sums and the packet of shadow
+// rays being filled, with each ray's light sample and pixel.
 struct RowRays {
-  std::vector<ShadowRay> rays;
-  std::vector<Vec3> irradiance;  // unoccluded, of each ray's light sample
-  std::vector<int> column;       // the pixel each ray belongs to
-  std::vector<uint8_t> blocked;
-  std::vector<int> samples;      // per pixel: surface samples x light samples
+  std::vector<int> samples;  // per pixel: surface samples x light samples
   std::vector<Vec3> sum;
+  ShadowPacket packet;
+  Vec3 irradiance[ShadowPacket::kCapacity];  // unoccluded, of each ray's light sample
+  int column[ShadowPacket::kCapacity];
+
+  // Traces the packet and adds the light of the rays nothing blocks.
+  void trace(const RayScene& scene) {
+    scene.occluded(packet);
+    for (int j = 0; j < packet.size(); ++j)
+      if (!packet.blocked(j)) sum[size_t(column[j])] += irradiance[j];
+    packet.clear();
+  }
 };
 
 // surface_at(pixel, k): the pixel's k-th surface sample, nullptr where it
-// sees the background. A row's rays go to Embree together, as packets of
-// neighbouring pixels.
+// sees the background. A row's rays go to Embree as packets of neighbouring
+// pixels', traced as soon as one is full.
 template <class SurfaceAt>
 bool trace_direct_light(int width, int height, int samples_per_pixel, const SurfaceAt& surface_at,
                         const RayScene& scene, const Light& light, const DirectLightSettings& settings, Image& out,
@@ -66,11 +74,8 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
         stopped = true;
         return;
       }
-      row.rays.clear();
-      row.irradiance.clear();
-      row.column.clear();
-      row.samples.assign(width, 0);
-      row.sum.assign(width, Vec3::Zero());
+      row.samples.assign(size_t(width), 0);
+      row.sum.assign(size_t(width), Vec3::Zero());
       for (int x = 0; x < width; ++x) {
         const size_t pixel = size_t(y) * width + x;
         std::optional<Rng> rng;
@@ -79,22 +84,22 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
           const SurfacePoint* p = surface_at(pixel, k);
           if (!p) continue;
           for (int j = 0; j < light_samples; ++j) {
-            ++row.samples[x];
+            ++row.samples[size_t(x)];
             const Vec2 u = random ? rng->uniform2() : Vec2(0.5f, 0.5f);
             const LightSample s = sampler.sample(p->position, p->normal, u);
             if (s.irradiance.isZero() || s.direction.dot(p->geometric_normal) <= 0.0f) continue;
-            row.rays.push_back(scene.shadow_ray(*p, s.direction, s.distance));
-            row.irradiance.push_back(s.irradiance);
-            row.column.push_back(x);
+            const int slot = row.packet.add(scene.shadow_ray(*p, s.direction, s.distance));
+            row.irradiance[slot] = s.irradiance;
+            row.column[slot] = x;
+            if (row.packet.full()) row.trace(scene);
           }
         }
       }
-      row.blocked.resize(row.rays.size());
-      scene.occluded(row.rays, row.blocked);
-      for (size_t i = 0; i < row.rays.size(); ++i)
-        if (!row.blocked[i]) row.sum[row.column[i]] += row.irradiance[i];
-      for (int x = 0; x < width; ++x)
-        out.at(x, y) = row.samples[x] ? Vec3(row.sum[x] * (kInvPi / float(row.samples[x]))) : Vec3::Zero();
+      if (row.packet.size()) row.trace(scene);
+      for (int x = 0; x < width; ++x) {
+        const int n = row.samples[size_t(x)];
+        out.at(x, y) = n ? Vec3(row.sum[size_t(x)] * (kInvPi / float(n))) : Vec3::Zero();
+      }
     }
   });
   return !stopped;

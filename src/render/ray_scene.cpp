@@ -101,49 +101,31 @@ bool RayScene::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {
   return ray.tfar < 0.0f;
 }
 
-void RayScene::occluded(std::span<const ShadowRay> rays, std::span<uint8_t> blocked) const {
-  // Packets of 16 rays (Embree's widest): neighbouring, coherent rays share
-  // the traversal of the BVH nodes they all cross.
+void RayScene::occluded(ShadowPacket& packet) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  for (size_t start = 0; start < rays.size(); start += 16) {
-    const size_t n = std::min<size_t>(16, rays.size() - start);
-    alignas(64) RTCRay16 packet;
-    alignas(64) int valid[16];
-    for (size_t j = 0; j < 16; ++j) {
-      const ShadowRay* r = j < n ? &rays[start + j] : nullptr;
-      valid[j] = (r && r->tmax > 0.0f) ? -1 : 0;
-      if (!valid[j]) {
-        packet.org_x[j] = packet.org_y[j] = packet.org_z[j] = 0.0f;
-        packet.dir_x[j] = packet.dir_y[j] = 0.0f;
-        packet.dir_z[j] = 1.0f;
-        packet.tnear[j] = 0.0f;
-        packet.tfar[j] = 0.0f;
-      } else {
-        packet.org_x[j] = r->origin.x(), packet.org_y[j] = r->origin.y(), packet.org_z[j] = r->origin.z();
-        packet.dir_x[j] = r->dir.x(), packet.dir_y[j] = r->dir.y(), packet.dir_z[j] = r->dir.z();
-        packet.tnear[j] = 0.0f;
-        packet.tfar[j] = r->tmax;
-      }
-      packet.mask[j] = ~0u;
-      packet.time[j] = 0.0f;
-      packet.id[j] = 0;
-      packet.flags[j] = 0;
-    }
-    rtcOccluded16(valid, embree_->scene, &context, &packet);
-    for (size_t j = 0; j < n; ++j) blocked[start + j] = valid[j] && packet.tfar[j] < 0.0f;
+  alignas(64) RTCRay16 rays;
+  alignas(64) int valid[16];
+  static_assert(ShadowPacket::kCapacity == 16);
+  std::copy_n(packet.origin_[0], 16, rays.org_x);
+  std::copy_n(packet.origin_[1], 16, rays.org_y);
+  std::copy_n(packet.origin_[2], 16, rays.org_z);
+  std::copy_n(packet.dir_[0], 16, rays.dir_x);
+  std::copy_n(packet.dir_[1], 16, rays.dir_y);
+  std::copy_n(packet.dir_[2], 16, rays.dir_z);
+  std::copy_n(packet.tfar_, 16, rays.tfar);
+  for (int j = 0; j < 16; ++j) {
+    valid[j] = j < packet.size_ && packet.tfar_[j] > 0.0f ? -1 : 0;
+    rays.tnear[j] = 0.0f;
+    rays.mask[j] = ~0u;
+    rays.time[j] = 0.0f;
+    rays.id[j] = 0;
+    rays.flags[j] = 0;
   }
-}
-
-Vec3 RayScene::offset_origin(const SurfacePoint& p, const Vec3& towards) const {
-  const float scale = epsilon_ + 1e-5f * p.position.cwiseAbs().maxCoeff();
-  const Vec3& ng = p.geometric_normal;
-  return p.position + (ng.dot(towards) >= 0.0f ? scale : -scale) * ng;
-}
-
-ShadowRay RayScene::shadow_ray(const SurfacePoint& p, const Vec3& dir, float distance) const {
-  return {offset_origin(p, dir), dir, std::isfinite(distance) ? distance * (1.0f - 1e-4f) : distance};
+  rtcOccluded16(valid, embree_->scene, &context, &rays);
+  // Embree sets a blocked ray's tfar to -inf; the others keep theirs.
+  for (int j = 0; j < packet.size_; ++j) packet.tfar_[j] = valid[j] ? rays.tfar[j] : 0.0f;
 }
 
 }  // namespace relight

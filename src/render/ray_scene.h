@@ -2,10 +2,10 @@
 // mesh and answers closest-hit and any-hit (shadow) queries.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <span>
 
 #include "scene/triangle_mesh.h"
 
@@ -29,6 +29,40 @@ struct ShadowRay {
   float tmax = 0.0f;
 };
 
+class RayScene;
+
+// Up to 16 shadow rays traced together, as one Embree packet: coherent rays
+// (shadow rays of neighbouring pixels towards one light) share the
+// traversal of the BVH nodes they all cross, several times faster than one
+// by one. Kept field by field, as Embree's packets are, so that filling one
+// costs a few stores a ray.
+class ShadowPacket {
+ public:
+  static constexpr int kCapacity = 16;
+  int size() const { return size_; }
+  bool full() const { return size_ == kCapacity; }
+  // Adds a ray and returns its slot.
+  int add(const ShadowRay& ray) {
+    const int j = size_++;
+    for (int c = 0; c < 3; ++c) {
+      origin_[c][j] = ray.origin[c];
+      dir_[c][j] = ray.dir[c];
+    }
+    tfar_[j] = ray.tmax;
+    return j;
+  }
+  // After RayScene::occluded(packet): whether something blocks ray j.
+  bool blocked(int j) const { return tfar_[j] < 0.0f; }
+  void clear() { size_ = 0; }
+
+ private:
+  friend class RayScene;
+  alignas(64) float origin_[3][kCapacity] = {};
+  alignas(64) float dir_[3][kCapacity] = {};
+  alignas(64) float tfar_[kCapacity] = {};
+  int size_ = 0;
+};
+
 class RayScene {
  public:
   explicit RayScene(const TriangleMesh& mesh);
@@ -41,19 +75,22 @@ class RayScene {
                  float tmax = std::numeric_limits<float>::infinity()) const;
   // True if anything blocks the segment origin + t dir, t in (0, tmax).
   bool occluded(const Vec3& origin, const Vec3& dir, float tmax) const;
-  // The same for many rays at once: blocked[i] = 1 if something blocks
-  // rays[i], else 0. Rays that are neighbours in the span should be coherent
-  // (shadow rays of neighbouring pixels towards one light): they are traced
-  // as packets, several times faster than one by one.
-  void occluded(std::span<const ShadowRay> rays, std::span<uint8_t> blocked) const;
+  // The same for a packet of rays at once; then packet.blocked(j) answers.
+  void occluded(ShadowPacket& packet) const;
 
   // A ray origin just off the surface on the side of `towards`, so that the
   // ray does not hit the surface it starts on.
-  Vec3 offset_origin(const SurfacePoint& p, const Vec3& towards) const;
+  Vec3 offset_origin(const SurfacePoint& p, const Vec3& towards) const {
+    const float scale = epsilon_ + 1e-5f * p.position.cwiseAbs().maxCoeff();
+    const Vec3& ng = p.geometric_normal;
+    return p.position + (ng.dot(towards) >= 0.0f ? scale : -scale) * ng;
+  }
   // The shadow ray from p towards a point `distance` away along the unit
   // `dir` (infinite distance: a direction), starting just off the surface and
   // stopping just short of the point.
-  ShadowRay shadow_ray(const SurfacePoint& p, const Vec3& dir, float distance) const;
+  ShadowRay shadow_ray(const SurfacePoint& p, const Vec3& dir, float distance) const {
+    return {offset_origin(p, dir), dir, std::isfinite(distance) ? distance * (1.0f - 1e-4f) : distance};
+  }
   // Offset distance used for origins and shadow-ray ends (scales with the scene).
   float epsilon() const { return epsilon_; }
 

@@ -86,19 +86,21 @@ LightSample LightSampler::sample_point_like(const Vec3& p, const Vec3& n, const 
   LightSample s{};
   const Vec3 to_light_center = light.position - p;
   const float d2_center = to_light_center.squaredNorm();
-  const Vec3 axis = to_light_center.normalized();  // disc normal faces p
+  const float distance_center = std::sqrt(d2_center);
+  const Vec3 axis = to_light_center * (1.0f / distance_center);  // disc normal faces p
   float cone = 1.0f;
   if (light.type == LightType::spot) cone = spot_cone(cos_outer_, light.blend, (-axis).dot(axis_));
-  Vec3 target = light.position;
   if (light.radius > 0.0f) {
     const Vec2 d = sample_concentric_disc(u) * light.radius;
     Vec3 t, b;
     orthonormal_basis(axis, t, b);
-    target += d.x() * t + d.y() * b;
+    const Vec3 to_light = light.position + d.x() * t + d.y() * b - p;
+    s.distance = to_light.norm();
+    s.direction = to_light / s.distance;
+  } else {  // the centre: its direction and distance are known (the interactive engine's hot path)
+    s.distance = distance_center;
+    s.direction = axis;
   }
-  const Vec3 to_light = target - p;
-  s.distance = to_light.norm();
-  s.direction = to_light / s.distance;
   const float cos_surface = n.dot(s.direction);
   if (cos_surface <= 0.0f || cone <= 0.0f || d2_center <= 0.0f) {
     s.irradiance = Vec3::Zero();
