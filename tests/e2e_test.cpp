@@ -80,8 +80,8 @@ TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
 }
 
 // --method radiosity at its defaults (the lights' direct light per pixel at
-// the fewest paths, 9: one per G-buffer sample). Measured 32.7-32.9 dB
-// (outdoor) and 27.7 dB (bookcase) over seeds 1-3, docs/benchmarks.md "Radiosity against path
+// the fewest paths, 9: one per G-buffer sample). Measured 33.1 dB (outdoor)
+// and 27.6 dB (bookcase); seeds 1-3 varied by 0.1 dB. docs/benchmarks.md "Radiosity against path
 // tracing"; asserted with a margin for the noise of other seeds.
 TEST_P(ReferenceScene, RadiosityAlbedo) {
   if (!present()) GTEST_SKIP() << "reference scene " << folder() << " not found (set RELIGHT_SCENES to the scenes folder)";
