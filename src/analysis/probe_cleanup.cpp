@@ -43,46 +43,32 @@ void fill_holes(Image& img, std::vector<uint8_t>& hole, const std::vector<uint8_
   }
 }
 
-// What each probe pixel shows: the environment, the modelled geometry (any
-// part of the pixel's square), or nothing (off a mirror ball's disc).
-enum class ProbePixel : uint8_t { environment, geometry, outside };
-using ProbePixels = std::vector<ProbePixel>;
-
-ProbePixels classify_probe_pixels(const Probe& probe, const RayScene& rays) {
-  const ProbeFrame frame(probe.forward, probe.up);
-  const int w = probe.image.width, h = probe.image.height;
-  ProbePixels out(size_t(w) * h, ProbePixel::environment);
-  SurfacePoint hit;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      ProbePixel& kind = out[size_t(y) * w + x];
-      if (!probe_uv_to_direction(probe.mapping, frame, Vec2((x + 0.5f) / w, (y + 0.5f) / h))) {
-        kind = ProbePixel::outside;
-        continue;
-      }
-      // A pixel is the mean over its square: one whose square shows any
-      // geometry (a silhouette, the horizon) mixes the two, so it goes too.
-      for (int k = 0; k < 9 && kind == ProbePixel::environment; ++k) {
-        const Vec2 uv((x + 0.5f * float(k % 3)) / w, (y + 0.5f * float(k / 3)) / h);
-        const auto d = probe_uv_to_direction(probe.mapping, frame, uv);
-        if (d && rays.intersect(probe.position, *d, hit)) kind = ProbePixel::geometry;
-      }
-    }
-  return out;
-}
-
 }  // namespace
 
 Probe remove_local_geometry_from_probe(const Probe& probe, const RayScene& rays, const std::optional<Vec3>& fill) {
   Probe out = probe;
-  const ProbePixels kinds = classify_probe_pixels(probe, rays);
-  if (std::find(kinds.begin(), kinds.end(), ProbePixel::environment) == kinds.end())
-    return out;  // the probe sees only geometry: nothing distant to keep
-  std::vector<uint8_t> hole(kinds.size()), outside(kinds.size());
-  for (size_t i = 0; i < kinds.size(); ++i) {
-    hole[i] = kinds[i] == ProbePixel::geometry;
-    outside[i] = kinds[i] == ProbePixel::outside;
-  }
+  const ProbeFrame frame(probe.forward, probe.up);
+  const int w = probe.image.width, h = probe.image.height;
+  std::vector<uint8_t> hole(size_t(w) * h, 0), outside(size_t(w) * h, 0);
+  size_t known = 0;
+  SurfacePoint hit;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      if (!probe_uv_to_direction(probe.mapping, frame, Vec2((x + 0.5f) / w, (y + 0.5f) / h))) {
+        outside[i] = 1;
+        continue;
+      }
+      // A pixel is the mean over its square: one whose square shows any
+      // geometry (a silhouette, the horizon) mixes the two, so it goes too.
+      for (int k = 0; k < 9 && !hole[i]; ++k) {
+        const Vec2 uv((x + 0.5f * float(k % 3)) / w, (y + 0.5f * float(k / 3)) / h);
+        const auto d = probe_uv_to_direction(probe.mapping, frame, uv);
+        hole[i] = d && rays.intersect(probe.position, *d, hit);
+      }
+      known += !hole[i];
+    }
+  if (known == 0) return out;  // the probe sees only geometry: nothing distant to keep
   if (fill) {
     for (size_t i = 0; i < hole.size(); ++i)
       if (hole[i]) out.image.pixels[i] = *fill;

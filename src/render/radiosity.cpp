@@ -63,7 +63,15 @@ NodeMesh::NodeMesh(TriangleMesh mesh, std::vector<uint32_t> sources, const Trian
       }
     }
   }
-  for (Node& node : nodes_) node.normal.normalize();
+  for (Node& node : nodes_) {
+    node.normal.normalize();
+    float sum = 0.0f;
+    for (uint32_t t : node.triangles) {
+      const auto& c = mesh_.triangles[t];
+      sum += (mesh_.positions[c[1]] - mesh_.positions[c[0]]).cross(mesh_.positions[c[2]] - mesh_.positions[c[0]]).norm();
+      node.area_up_to.push_back(sum);
+    }
+  }
 }
 
 void NodeMesh::add_corner(uint32_t t, int corner, int side, const Vec3& normal) {
@@ -76,7 +84,7 @@ void NodeMesh::add_corner(uint32_t t, int corner, int side, const Vec3& normal) 
     }
   if (chosen == kNoNode) {
     chosen = uint32_t(nodes_.size());
-    nodes_.push_back({v, Vec3::Zero(), {}});
+    nodes_.push_back({v, Vec3::Zero(), {}, {}});
     vertex_nodes_[v].push_back(chosen);
   }
   nodes_[chosen].normal += normal;  // normalised once all corners are in
@@ -116,22 +124,13 @@ Vec3 NodeMesh::interpolate(std::span<const Vec3> values, uint32_t t, const Vec3&
 
 SurfacePoint NodeMesh::sample_point(size_t n, Rng& rng) const {
   const Node& node = nodes_[n];
-  const auto area = [&](uint32_t t) {
-    const auto& c = mesh_.triangles[t];
-    return (mesh_.positions[c[1]] - mesh_.positions[c[0]]).cross(mesh_.positions[c[2]] - mesh_.positions[c[0]]).norm();
-  };
   // A triangle by its area, then the vertex's barycentric coordinate by
   // its density there, w(1 - w) (the hat times the uniform's), which is the
   // middle of three uniform numbers; the rest of the point uniform.
-  float total = 0.0f;
-  for (uint32_t t : node.triangles) total += area(t);
-  float pick = rng.uniform() * total;
-  uint32_t t = node.triangles.back();
-  for (uint32_t candidate : node.triangles)
-    if ((pick -= area(candidate)) < 0.0f) {
-      t = candidate;
-      break;
-    }
+  const float pick = rng.uniform() * node.area_up_to.back();
+  const size_t chosen = size_t(std::upper_bound(node.area_up_to.begin(), node.area_up_to.end(), pick) -
+                               node.area_up_to.begin());
+  const uint32_t t = node.triangles[std::min(chosen, node.triangles.size() - 1)];
   const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
   const float w = std::max(std::min(u1, u2), std::min(std::max(u1, u2), u3));
   const float s = rng.uniform();

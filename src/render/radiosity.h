@@ -77,6 +77,7 @@ class NodeMesh {
     uint32_t vertex;
     Vec3 normal;
     std::vector<uint32_t> triangles;  // those it is a corner of, on its side
+    std::vector<float> area_up_to;    // their areas (doubled), summed up to and including each
   };
   void add_corner(uint32_t triangle, int corner, int side, const Vec3& normal);
 

@@ -86,6 +86,12 @@ LightSample LightSampler::sample_point_like(const Vec3& p, const Vec3& n, const 
   LightSample s{};
   const Vec3 to_light_center = light.position - p;
   const float d2_center = to_light_center.squaredNorm();
+  if (!(d2_center > 0.0f)) {  // at the light's centre: no direction, no light
+    s.direction = Vec3::UnitZ();
+    s.distance = 0.0f;
+    s.irradiance = Vec3::Zero();
+    return s;
+  }
   const float distance_center = std::sqrt(d2_center);
   const Vec3 axis = to_light_center * (1.0f / distance_center);  // disc normal faces p
   float cone = 1.0f;
@@ -102,7 +108,7 @@ LightSample LightSampler::sample_point_like(const Vec3& p, const Vec3& n, const 
     s.direction = axis;
   }
   const float cos_surface = n.dot(s.direction);
-  if (cos_surface <= 0.0f || cone <= 0.0f || d2_center <= 0.0f) {
+  if (cos_surface <= 0.0f || cone <= 0.0f) {
     s.irradiance = Vec3::Zero();
     return s;
   }
