@@ -9,6 +9,7 @@
 #include "analysis/probe_cleanup.h"
 #include "analysis/probe_lights.h"
 #include "analysis/surface_albedo.h"
+#include "render/direct_light.h"
 
 namespace relight {
 
@@ -122,13 +123,6 @@ std::optional<Vec3> emission_seen_by_probes(const std::vector<Probe>& probes, co
   return Vec3(sum / float(n));
 }
 
-Light unit_light(const Light& light) {
-  Light unit = light;
-  unit.color = Vec3::Ones();
-  unit.power = unit.irradiance = 1.0f;
-  return unit;
-}
-
 }  // namespace
 
 void set_emission(Light& light, const Vec3& emission) {
@@ -176,11 +170,18 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
 
   Image bounce_albedo(gbuffer.width(), gbuffer.height(), Vec3::Ones());
   Vec3 unseen = Vec3::Ones();
-  for (int round = 0; round < options.rounds; ++round) {
+  // The illumination of the lighting fitted so far.
+  const auto illumination = [&] {
+    Image sum(gbuffer.width(), gbuffer.height());
+    for (size_t i = 0; i < sum.size(); ++i)
+      for (const auto& b : bases) sum.pixels[i] += b.image.pixels[i].cwiseProduct(b.emission);
+    return sum;
+  };
+  const auto fit_round = [&](int round) {
     const PhotoAlbedo bounce(scene.camera, gbuffer, bounce_albedo, unseen);
     for (size_t k = 0; k < light_index.size(); ++k) {
       Lighting lighting;
-      lighting.lights = {unit_light(scene.lights[light_index[k]])};
+      lighting.lights = {unit_light(result.scene.lights[light_index[k]])};
       bases[k].image = render_basis(scene, rays, gbuffer, lighting, bounce, options, progress);
     }
     Lighting sky;
@@ -190,36 +191,51 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
     const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer, bases, background);
     result.edge_pairs = pairs.size();
     for (int c = 0; c < 3; ++c) solve_channel(scene.photo, bases, pairs, c);
-    spdlog::info("fit round {}: {} shadow-edge pixel pairs, background {:.4f} {:.4f} {:.4f}", round + 1, pairs.size(),
+    spdlog::info("fit round {}: {} shadow-edge pixel pairs, background {:.4f} {:.4f} {:.4f}", round, pairs.size(),
                  bases[background].emission.x(), bases[background].emission.y(), bases[background].emission.z());
 
     // The albedo under this lighting, for the next round's bounce light.
-    IlluminationImages illumination{Image(gbuffer.width(), gbuffer.height()), Image(gbuffer.width(), gbuffer.height())};
-    for (size_t i = 0; i < illumination.surface.size(); ++i)
-      for (const auto& b : bases) illumination.surface.pixels[i] += b.image.pixels[i].cwiseProduct(b.emission);
-    const AlbedoImages albedo = recover_albedo(scene.photo, illumination, gbuffer);
+    const AlbedoImages albedo = recover_albedo(
+        scene.photo, IlluminationImages{illumination(), Image(gbuffer.width(), gbuffer.height())}, gbuffer);
     bounce_albedo = albedo.albedo;
     unseen = albedo.mean;
-  }
+  };
 
   // Soft light (a lamp indoors) casts too few sharp shadows to tell the
   // background from the lights, and the edge fit can land anywhere. The
   // probes measure the environment directly, but only the part of it they
   // see: where the edge fit disagrees with their mean radiance by more than a
   // factor of two, the probes' mean is taken instead.
-  if (!distant.empty()) {
+  const auto check_background_against_probes = [&] {
+    if (distant.empty()) return;
     Vec3 mean = Vec3::Zero();
-    for (const Probe& p : distant) mean += mean_radiance(remove_lights_from_probe(p, scene.lights));
+    for (const Probe& p : distant) mean += mean_radiance(remove_lights_from_probe(p, result.scene.lights));
     mean /= float(distant.size());
     const float ratio = luminance(bases[background].emission) / std::max(1e-6f, luminance(mean));
     if (result.edge_pairs == 0 || ratio < 0.5f || ratio > 2.0f) {
       bases[background].emission = mean;
       result.background_source = "probe mean (the shadows disagree)";
     }
-  }
-  for (size_t k = 0; k < light_index.size(); ++k) {
-    set_emission(result.scene.lights[light_index[k]], bases[k].emission);
-    result.lights[k].emission_after = bases[k].emission;
+  };
+  const auto set_fitted_emissions = [&] {
+    for (size_t k = 0; k < light_index.size(); ++k) {
+      set_emission(result.scene.lights[light_index[k]], bases[k].emission);
+      result.lights[k].emission_after = bases[k].emission;
+    }
+  };
+
+  for (int round = 1; round <= options.rounds; ++round) fit_round(round);
+  check_background_against_probes();
+  set_fitted_emissions();
+
+  // Lights moved to where their shadows fall, then their emission fitted
+  // again: a shadow edge in the wrong place misleads the edge equations.
+  if (options.refine_placement) {
+    result.placement =
+        refine_light_placement(result.scene, rays, gbuffer, illumination(), options.placement, progress);
+    fit_round(options.rounds + 1);
+    check_background_against_probes();
+    set_fitted_emissions();
   }
   result.scene.background = bases[background].emission;
   result.background_after = result.scene.background;

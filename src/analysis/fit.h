@@ -17,12 +17,15 @@
 // background is the probes' mean radiance (without lights and geometry).
 // Each round's bounce light uses the albedo recovered with the lighting
 // fitted in the round before (the first: white surfaces).
+// 3. Optionally, the lights are then moved to where their shadows fall
+//    (light_placement.h) and their emission fitted once more.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "analysis/analyze.h"
+#include "analysis/light_placement.h"
 
 namespace relight {
 
@@ -31,6 +34,8 @@ struct FitOptions {
   uint64_t seed = 1;
   int max_bounces = 4;
   int rounds = 3;
+  bool refine_placement = false;
+  PlacementOptions placement;
 };
 
 struct FittedLight {
@@ -45,6 +50,7 @@ struct FitResult {
   Vec3 background_before, background_after;
   std::string background_source = "shadows";  // or the probe mean
   size_t edge_pairs = 0;  // pixel pairs across shadow edges used by the last round
+  std::vector<PlacedLight> placement;  // with refine_placement
 };
 
 FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,

@@ -1,0 +1,53 @@
+// Refining where the principal lights are from the shadows they cast: the
+// user gives "a rough idea of the lights"; a shadow a few centimetres (or a
+// sun a few degrees) off leaves a bright and a dark fringe in the albedo.
+//
+// The illumination of the fitted lighting splits into each light's direct
+// light (which moves with the light) and the rest (background, bounce light:
+// smooth, and taken as fixed while a light moves). For a candidate placement
+// the direct light is re-rendered with shadow rays, and the objective compares
+// the photo's log ratio with the illumination's over pixel pairs on one plane
+// a gap apart: where both show the same shadow edge the ratios cancel. The
+// per-pair penalty has a dead zone (noise, faint texture) and a cap (a texture
+// edge costs the same wherever the shadows are). A wide gap first (a basin of
+// attraction as wide as the gap, where a 1-pixel gap sees only shadows already
+// within a pixel of the truth), then a narrow one; compass search on the
+// light's position (point, spot, area) or direction (sun).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "core/progress.h"
+#include "render/gbuffer.h"
+#include "render/ray_scene.h"
+#include "scene/scene.h"
+
+namespace relight {
+
+struct PlacementOptions {
+  int max_evaluations = 150;  // per light
+  int light_samples = 4;      // per pixel, for lights with a size (fixed samples: a smooth objective)
+  // The first step of the search (it ends at 1/64 of it): how far off the
+  // given placement may be.
+  float position_step = 0.25f;      // m (point, spot, area)
+  float direction_step_deg = 4.0f;  // sun
+};
+
+struct PlacedLight {
+  std::string name;
+  bool direction = false;   // the sun's direction moved (else a position)
+  Vec3 before, after;       // position (m) or unit direction
+  float moved = 0.0f;       // m, or degrees for a direction
+  double objective_before = 0.0, objective_after = 0.0;  // the mean mismatch, pairs 16 pixels apart
+};
+
+// Moves each enabled light of `scene` to where its shadows best match the
+// photo. `illumination`: the illumination (white surfaces, bounce light
+// included) of the scene's lighting as it is, per pixel.
+std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
+                                                const Image& illumination, const PlacementOptions& options,
+                                                Progress& progress);
+
+}  // namespace relight

@@ -1,0 +1,95 @@
+// Light placement from the shadows (analysis/light_placement.h) on the
+// example room, its photo made by the path tracer with the known albedo: a
+// lamp moved 20 cm and a sun turned 3 degrees go back to where they were; a
+// light already in place stays.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "analysis/light_placement.h"
+#include "render/render_illumination.h"
+#include "room_scene.h"
+
+using namespace relight;
+
+namespace {
+
+constexpr float kDegree = 3.14159265f / 180.0f;
+
+struct Placed {
+  float before, after;  // m, or degrees for a sun
+};
+
+// The room lit by `truth` photographed, then `given` placed from its shadows.
+Placed place(const Light& truth, const Light& given) {
+  Scene scene = example::room_scene(320, 240);
+  const RayScene rays(scene.mesh);
+  const GBuffer gbuffer(scene.camera, rays, 4, 5, "room");
+  const example::RoomAlbedo albedo = example::room_albedo();
+  Lighting lighting;
+  lighting.lights = {truth};
+  lighting.environment = Environment::constant(scene.background);
+  scene.photo = synthesize_photo(gbuffer, scene.camera, Integrator(rays, lighting, &albedo), albedo, 64, 3,
+                                 Progress::silent());
+
+  // The illumination of the lighting as given (white surfaces, the bounce
+  // light of the known albedo, as the fit recovers it).
+  lighting.lights = {given};
+  IlluminationOptions options;
+  options.paths_per_pixel = 16;
+  const Image illumination =
+      render_illumination(gbuffer, scene.camera, Integrator(rays, lighting, &albedo), options, Progress::silent()).surface;
+  scene.lights = {given};
+  const std::vector<PlacedLight> placed =
+      refine_light_placement(scene, rays, gbuffer, illumination, PlacementOptions{}, Progress::silent());
+  EXPECT_EQ(placed.size(), 1u);
+
+  const Light& found = scene.lights.front();
+  const auto error = [&](const Light& l) {
+    if (truth.type != LightType::directional) return (l.position - truth.position).norm();
+    return std::acos(std::min(1.0f, l.direction.normalized().dot(truth.direction.normalized()))) / kDegree;
+  };
+  const Placed placed_light{error(given), error(found)};
+  std::printf("[ figures  ] %s %.3g %s off before, %.3g after\n", truth.name.c_str(), placed_light.before,
+              truth.type == LightType::directional ? "degrees" : "m", placed_light.after);
+  return placed_light;
+}
+
+Light room_lamp() { return example::room_scene(8, 6).lights.front(); }
+
+Light sun() {
+  Light s;
+  s.type = LightType::directional;
+  s.name = "sun";
+  s.direction = Vec3(0.45f, 0.35f, -0.82f).normalized();
+  s.irradiance = 3.0f;
+  s.angle_deg = 0.5f;
+  return s;
+}
+
+TEST(LightPlacement, MovesALampBackToItsShadows) {
+  const Light truth = room_lamp();
+  Light given = truth;
+  given.position += Vec3(0.12f, -0.1f, 0.12f);  // 0.2 m
+  const Placed p = place(truth, given);
+  EXPECT_NEAR(p.before, 0.2f, 0.01f);
+  EXPECT_LE(p.after, 0.04f);
+}
+
+TEST(LightPlacement, TurnsASunBackToItsShadows) {
+  const Light truth = sun();
+  Light given = truth;
+  const Vec3 d = truth.direction;
+  given.direction = (d + std::tan(3.0f * kDegree) * Vec3(0.6f, -0.8f, 0.0f).cross(d).normalized()).normalized();
+  const Placed p = place(truth, given);
+  EXPECT_NEAR(p.before, 3.0f, 0.05f);
+  EXPECT_LE(p.after, 0.3f);
+}
+
+TEST(LightPlacement, LeavesALightInPlaceWhereItIs) {
+  const Light truth = room_lamp();
+  EXPECT_LE(place(truth, truth).after, 0.02f);
+}
+
+}  // namespace
