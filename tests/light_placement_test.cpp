@@ -1,7 +1,7 @@
 // Light placement from the shadows (analysis/light_placement.h) on the
 // example room, its photo made by the path tracer with the known albedo: a
-// lamp moved 20 cm and a sun turned 3 degrees go back to where they were; a
-// light already in place stays.
+// lamp moved 20 cm, a sun turned 3 degrees and a spot moved 15 cm and turned
+// 3 degrees go back to where they were; a light already in place stays.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,7 +18,8 @@ namespace {
 constexpr float kDegree = 3.14159265f / 180.0f;
 
 struct Placed {
-  float before, after;  // m, or degrees for a sun
+  float before_m, after_m;      // position error
+  float before_deg, after_deg;  // direction error
 };
 
 // The room lit by `truth` photographed, then `given` placed from its shadows.
@@ -46,14 +47,20 @@ Placed place(const Light& truth, const Light& given) {
   EXPECT_EQ(placed.size(), 1u);
 
   const Light& found = scene.lights.front();
-  const auto error = [&](const Light& l) {
-    if (truth.type != LightType::directional) return (l.position - truth.position).norm();
+  const auto metres = [&](const Light& l) { return (l.position - truth.position).norm(); };
+  const auto degrees = [&](const Light& l) {
     return std::acos(std::min(1.0f, l.direction.normalized().dot(truth.direction.normalized()))) / kDegree;
   };
-  const Placed placed_light{error(given), error(found)};
-  std::printf("[ figures  ] %s %.3g %s off before, %.3g after\n", truth.name.c_str(), placed_light.before,
-              truth.type == LightType::directional ? "degrees" : "m", placed_light.after);
-  return placed_light;
+  const Placed p{metres(given), metres(found), degrees(given), degrees(found)};
+  std::printf("[ figures  ] %s: %.3g m and %.3g degrees off before, %.3g m and %.3g degrees after\n",
+              truth.name.c_str(), p.before_m, p.before_deg, p.after_m, p.after_deg);
+  return p;
+}
+
+// `d` turned by `degrees` about an axis across it.
+Vec3 turned(const Vec3& d, float degrees) {
+  const Vec3 across = Vec3(0.6f, -0.8f, 0.0f).cross(d).normalized();
+  return (d + std::tan(degrees * kDegree) * across).normalized();
 }
 
 Light room_lamp() { return example::room_scene(8, 6).lights.front(); }
@@ -73,23 +80,33 @@ TEST(LightPlacement, MovesALampBackToItsShadows) {
   Light given = truth;
   given.position += Vec3(0.12f, -0.1f, 0.12f);  // 0.2 m
   const Placed p = place(truth, given);
-  EXPECT_NEAR(p.before, 0.2f, 0.01f);
-  EXPECT_LE(p.after, 0.04f);
+  EXPECT_NEAR(p.before_m, 0.2f, 0.01f);
+  EXPECT_LE(p.after_m, 0.04f);
 }
 
 TEST(LightPlacement, TurnsASunBackToItsShadows) {
   const Light truth = sun();
   Light given = truth;
-  const Vec3 d = truth.direction;
-  given.direction = (d + std::tan(3.0f * kDegree) * Vec3(0.6f, -0.8f, 0.0f).cross(d).normalized()).normalized();
+  given.direction = turned(truth.direction, 3.0f);
   const Placed p = place(truth, given);
-  EXPECT_NEAR(p.before, 3.0f, 0.05f);
-  EXPECT_LE(p.after, 0.3f);
+  EXPECT_NEAR(p.before_deg, 3.0f, 0.05f);
+  EXPECT_LE(p.after_deg, 0.3f);
+}
+
+TEST(LightPlacement, MovesAndTurnsASpotBackToItsShadowsAndCone) {
+  const Light truth = example::evening_rig().lights.at(1);
+  ASSERT_EQ(truth.type, LightType::spot);
+  Light given = truth;
+  given.position += Vec3(-0.1f, 0.1f, 0.05f);  // 0.15 m
+  given.direction = turned(truth.direction, 3.0f);
+  const Placed p = place(truth, given);
+  EXPECT_LE(p.after_m, 0.04f);
+  EXPECT_LE(p.after_deg, 1.0f);
 }
 
 TEST(LightPlacement, LeavesALightInPlaceWhereItIs) {
   const Light truth = room_lamp();
-  EXPECT_LE(place(truth, truth).after, 0.02f);
+  EXPECT_LE(place(truth, truth).after_m, 0.02f);
 }
 
 }  // namespace

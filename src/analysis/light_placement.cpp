@@ -65,65 +65,93 @@ std::vector<float> luminance_of(const Image& image) {
   return y;
 }
 
-// The light at a point of its search space: an offset of its position in
-// metres, or a turn of its direction in degrees about two axes across it.
+// The light at a point of its search space, in units of the first steps:
+// an offset of its position (point, spot, area) and a turn of its direction
+// about two axes across it (sun, spot, area). A spot or area light that moves
+// keeps pointing at the surface it pointed at: moving it then shifts its
+// shadows, turning it its cone, and the two do not trade off against each
+// other along a valley the search would crawl.
 class LightPlacement {
  public:
-  explicit LightPlacement(const Light& light) : light_(light) {
-    if (is_sun()) {
-      const Vec3 d = light.direction.normalized();
-      across_u_ = d.unitOrthogonal();
-      across_v_ = d.cross(across_u_);
-    }
+  static constexpr int kMaxDimensions = 5;
+  using Point = std::array<float, kMaxDimensions>;
+
+  LightPlacement(const Light& light, const RayScene& rays, const PlacementOptions& options)
+      : light_(light), metres_(options.position_step), degrees_(options.direction_step_deg) {
+    const Vec3 d = light.direction.normalized();
+    across_u_ = d.unitOrthogonal();
+    across_v_ = d.cross(across_u_);
+    SurfacePoint hit;
+    if (moves() && turns() && rays.intersect(light.position, d, hit)) aim_distance_ = hit.distance;
   }
-  bool is_sun() const { return light_.type == LightType::directional; }
-  int dimensions() const { return is_sun() ? 2 : 3; }
-  Light at(const std::array<float, 3>& x) const {
+  bool moves() const { return light_.type != LightType::directional; }
+  bool turns() const { return light_.type != LightType::point; }
+  int dimensions() const { return (moves() ? 3 : 0) + (turns() ? 2 : 0); }
+
+  Light at(const Point& x) const {
     Light l = light_;
-    if (is_sun())
-      l.direction = (light_.direction.normalized() + std::tan(x[0] * kDegree) * across_u_ +
-                     std::tan(x[1] * kDegree) * across_v_)
-                        .normalized();
-    else
-      l.position = light_.position + Vec3(x[0], x[1], x[2]);
+    const Vec3 d = light_.direction.normalized();
+    Vec3 turned = d;
+    if (turns()) {
+      turned = (d + std::tan(x[0] * degrees_ * kDegree) * across_u_ + std::tan(x[1] * degrees_ * kDegree) * across_v_)
+                   .normalized();
+      l.direction = turned;
+    }
+    if (moves()) {
+      const size_t axis = turns() ? 2 : 0;
+      l.position += metres_ * Vec3(x[axis], x[axis + 1], x[axis + 2]);
+      if (turns()) l.direction = (light_.position + aim_distance_ * turned / turned.dot(d) - l.position).normalized();
+    }
     return l;
   }
 
  private:
   Light light_;
-  Vec3 across_u_ = Vec3::Zero(), across_v_ = Vec3::Zero();
+  float metres_, degrees_;
+  Vec3 across_u_, across_v_;
+  float aim_distance_ = 1.0f;  // m, along the direction to what the light points at
 };
 
-// Compass search: tries a step each way along each axis, moves to the first
-// better point, halves the step when none is better, until the step is below
-// `min_step` or the evaluations run out.
+// Coordinate search: tries a step each way along each axis in turn and moves
+// to the first better point, starting again from the first axis; when no
+// axis gives a better point the step halves, until it is below `min_step` or
+// the evaluations run out. Turns come first among the axes: a spot's cone,
+// the widest edge it makes, is set by where it points. (Jumping on along the
+// last move, as Hooke and Jeeves do, overshot the spot's valley; keeping on
+// through the axes after a move drifted a lamp's soft shadows 3 cm.)
 struct SearchState {
-  std::array<float, 3> x{0, 0, 0};
+  LightPlacement::Point x{};
   double value = 0.0;
   int evaluations = 0;
 };
 
-void compass_search(SearchState& s, int dimensions, float step, float min_step, int max_evaluations,
-                    const std::function<double(const std::array<float, 3>&)>& objective) {
+void coordinate_search(SearchState& s, int dimensions, float step, float min_step, int max_evaluations,
+                       const std::function<double(const LightPlacement::Point&)>& objective) {
   while (step >= min_step && s.evaluations < max_evaluations) {
-    bool moved = false;
-    for (int axis = 0; axis < dimensions && !moved && s.evaluations < max_evaluations; ++axis)
+    bool improved = false;
+    for (int axis = 0; axis < dimensions && !improved; ++axis)
       for (const float sign : {1.0f, -1.0f}) {
-        std::array<float, 3> y = s.x;
+        if (s.evaluations >= max_evaluations) return;
+        LightPlacement::Point y = s.x;
         y[size_t(axis)] += sign * step;
         const double v = objective(y);
         ++s.evaluations;
         if (v < s.value) {
-          s.x = y, s.value = v, moved = true;
+          s.x = y, s.value = v, improved = true;
           break;
         }
-        if (s.evaluations >= max_evaluations) break;
       }
-    if (!moved) step *= 0.5f;
+    if (!improved) step *= 0.5f;
   }
 }
 
 }  // namespace
+
+float PlacedLight::moved_m() const { return (position_after - position_before).norm(); }
+
+float PlacedLight::turned_deg() const {
+  return std::acos(std::clamp(direction_before.dot(direction_after), -1.0f, 1.0f)) / kDegree;
+}
 
 std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
                                                 const Image& illumination, const PlacementOptions& options,
@@ -156,7 +184,7 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
 
   struct Level {
     int gap;
-    float first_step, last_step;  // relative to the options' first step
+    float first_step, last_step;  // in units of the options' first steps
   };
   constexpr Level kLevels[] = {{16, 1.0f, 1.0f / 8}, {4, 1.0f / 16, 1.0f / 64}};
   std::vector<PlanePairs> pairs;
@@ -165,53 +193,46 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
   std::vector<PlacedLight> placed;
   for (size_t k = 0; k < enabled.size(); ++k) {
     Light& light = scene.lights[enabled[k]];
-    const LightPlacement placement(light);
-    const float step = placement.is_sun() ? options.direction_step_deg : options.position_step;
+    const LightPlacement placement(light, rays, options);
     // The illumination with light k where the search puts it.
     std::vector<float> others = rest;
     for (size_t j = 0; j < enabled.size(); ++j)
       if (j != k)
         for (size_t i = 0; i < others.size(); ++i) others[i] += direct[j][i];
-    const auto illumination_at = [&](const std::array<float, 3>& x) {
+    const auto illumination_at = [&](const LightPlacement::Point& x) {
       std::vector<float> l = direct_of(placement.at(x));
       for (size_t i = 0; i < l.size(); ++i) l[i] += others[i];
       return l;
     };
 
-    progress.begin("fit: placing " + light.name, options.max_evaluations);
-    PlacedLight report;
-    report.name = light.name;
-    report.direction = placement.is_sun();
-    report.before = placement.is_sun() ? light.direction.normalized() : light.position;
+    const int max_evaluations = options.evaluations_per_dimension * placement.dimensions();
+    progress.begin("fit: placing " + light.name, max_evaluations);
+    PlacedLight report{light.name, light.position, light.position, light.direction.normalized(),
+                       light.direction.normalized()};
     SearchState state;
     for (size_t level = 0; level < std::size(kLevels); ++level) {
-      const auto objective = [&](const std::array<float, 3>& x) {
+      const auto objective = [&](const LightPlacement::Point& x) {
         progress.advance();
         return mismatch(pairs[level], illumination_at(x));
       };
       state.value = objective(state.x);
       ++state.evaluations;
       if (level == 0) report.objective_before = state.value;
-      compass_search(state, placement.dimensions(), step * kLevels[level].first_step,
-                     step * kLevels[level].last_step, options.max_evaluations, objective);
+      coordinate_search(state, placement.dimensions(), kLevels[level].first_step, kLevels[level].last_step,
+                     max_evaluations, objective);
     }
     progress.end();
     // The narrow gap sees noise the wide one averages out: where its optimum is
     // worse on the wide gap than the start, the light stays.
     report.objective_after = mismatch(pairs.front(), illumination_at(state.x));
-    if (report.objective_after >= report.objective_before) state.x = {0, 0, 0};
+    if (report.objective_after >= report.objective_before) state.x = {};
     report.objective_after = std::min(report.objective_after, report.objective_before);
     light = placement.at(state.x);
     direct[k] = direct_of(light);
-    if (placement.is_sun()) {
-      report.after = light.direction.normalized();
-      report.moved = std::acos(std::clamp(report.before.dot(report.after), -1.0f, 1.0f)) / kDegree;
-    } else {
-      report.after = light.position;
-      report.moved = (report.after - report.before).norm();
-    }
-    spdlog::info("fit: {} moved {:.3g} {} (shadow mismatch {:.4f} -> {:.4f})", light.name, report.moved,
-                 report.direction ? "degrees" : "m", report.objective_before, report.objective_after);
+    report.position_after = light.position;
+    report.direction_after = light.direction.normalized();
+    spdlog::info("fit: {} moved {:.3g} m, turned {:.3g} degrees (shadow mismatch {:.4f} -> {:.4f})", light.name,
+                 report.moved_m(), report.turned_deg(), report.objective_before, report.objective_after);
     placed.push_back(report);
   }
   return placed;

@@ -11,8 +11,8 @@
 // per-pair penalty has a dead zone (noise, faint texture) and a cap (a texture
 // edge costs the same wherever the shadows are). A wide gap first (a basin of
 // attraction as wide as the gap, where a 1-pixel gap sees only shadows already
-// within a pixel of the truth), then a narrow one; compass search on the
-// light's position (point, spot, area) or direction (sun).
+// within a pixel of the truth), then a narrow one; coordinate search on the
+// light's position (point, spot, area) and direction (sun, spot, area).
 #pragma once
 
 #include <string>
@@ -27,7 +27,7 @@
 namespace relight {
 
 struct PlacementOptions {
-  int max_evaluations = 150;  // per light
+  int evaluations_per_dimension = 80;  // per light: 3 dimensions for a point, 2 for a sun, 5 for a spot or area
   int light_samples = 4;      // per pixel, for lights with a size (fixed samples: a smooth objective)
   // The first step of the search (it ends at 1/64 of it): how far off the
   // given placement may be.
@@ -37,14 +37,16 @@ struct PlacementOptions {
 
 struct PlacedLight {
   std::string name;
-  bool direction = false;   // the sun's direction moved (else a position)
-  Vec3 before, after;       // position (m) or unit direction
-  float moved = 0.0f;       // m, or degrees for a direction
+  Vec3 position_before, position_after;    // m
+  Vec3 direction_before, direction_after;  // unit
   double objective_before = 0.0, objective_after = 0.0;  // the mean mismatch, pairs 16 pixels apart
+
+  float moved_m() const;
+  float turned_deg() const;
 };
 
-// Moves each enabled light of `scene` to where its shadows best match the
-// photo. `illumination`: the illumination (white surfaces, bounce light
+// Moves (and turns) each enabled light of `scene` to where its shadows and
+// its light's edges best match the photo. `illumination`: the illumination (white surfaces, bounce light
 // included) of the scene's lighting as it is, per pixel.
 std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
                                                 const Image& illumination, const PlacementOptions& options,

@@ -25,16 +25,16 @@ void add_fit_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--out", args->out, "the fitted scene.json to write (paths rewritten to still resolve)")
       ->required();
   cmd->add_flag("--refine-placement", args->refine_placement,
-                "then move each light (the sun: turn it) to where its shadows fall in the photo");
+                "then move and turn each light (a point: move; the sun: turn) to where its shadows fall in the photo");
   add_sampling_options(*cmd, args->options);
   cmd->footer(help_footer(
       "Lights a probe sees get the power the probe measures; the background and the other lights are fitted so\n"
-      "  that the albedo does not change across shadow edges. With --refine-placement, lights up to ~25 cm (the\n"
-      "  sun: ~4 degrees) from where they were are moved to match their shadows. Writes a complete scene.json.",
+      "  that the albedo does not change across shadow edges. With --refine-placement, lights up to ~25 cm and\n"
+      "  ~4 degrees from where they were are moved and turned to match their shadows. Writes a complete scene.json.",
       {{"relight fit scene.json -o scene_fitted.json && relight analyze scene_fitted.json -o analysis",
         "fit the lights, then analyse with the fitted scene"},
        {"relight fit scene.json --refine-placement -o scene_fitted.json",
-        "also correct the lights' positions (the sun's direction) from the shadows"}}));
+        "also correct the lights' positions and directions from the shadows"}}));
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
       LoadedScene s = load_for_rendering(args->scene, args->options);
@@ -54,9 +54,10 @@ void add_fit_command(CLI::App& app, Action& action) {
                   fit.background_before.y(), fit.background_before.z(), fit.background_after.x(),
                   fit.background_after.y(), fit.background_after.z(), fit.background_source.c_str());
       for (const auto& p : fit.placement)
-        std::printf("%-16s %s %.4g %.4g %.4g -> %.4g %.4g %.4g (moved %.3g %s; shadow mismatch %.4f -> %.4f)\n",
-                    p.name.c_str(), p.direction ? "direction" : "position", p.before.x(), p.before.y(), p.before.z(),
-                    p.after.x(), p.after.y(), p.after.z(), p.moved, p.direction ? "degrees" : "m",
+        std::printf("%-16s moved %.3g m to %.4g %.4g %.4g, turned %.3g degrees to %.4g %.4g %.4g "
+                    "(shadow mismatch %.4f -> %.4f)\n",
+                    p.name.c_str(), p.moved_m(), p.position_after.x(), p.position_after.y(), p.position_after.z(),
+                    p.turned_deg(), p.direction_after.x(), p.direction_after.y(), p.direction_after.z(),
                     p.objective_before, p.objective_after);
       std::printf("%zu shadow-edge pixel pairs\n", fit.edge_pairs);
       std::printf("fitted scene written to %s\n", args->out.c_str());
