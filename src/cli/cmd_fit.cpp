@@ -53,12 +53,17 @@ void add_fit_command(CLI::App& app, Action& action) {
       std::printf("%-16s %.4g %.4g %.4g -> %.4g %.4g %.4g (%s)\n", "background", fit.background_before.x(),
                   fit.background_before.y(), fit.background_before.z(), fit.background_after.x(),
                   fit.background_after.y(), fit.background_after.z(), fit.background_source.c_str());
-      for (const auto& p : fit.placement)
-        std::printf("%-16s moved %.3g m to %.4g %.4g %.4g, turned %.3g degrees to %.4g %.4g %.4g "
-                    "(shadow mismatch %.4f -> %.4f)\n",
-                    p.name.c_str(), p.moved_m(), p.position_after.x(), p.position_after.y(), p.position_after.z(),
-                    p.turned_deg(), p.direction_after.x(), p.direction_after.y(), p.direction_after.z(),
-                    p.objective_before, p.objective_after);
+      for (const auto& p : fit.placement) {
+        std::printf("%-16s", p.name.c_str());
+        if (p.moved_m() > 0.0f)
+          std::printf(" moved %.3g m to %.4g %.4g %.4g", p.moved_m(), p.position_after.x(), p.position_after.y(),
+                      p.position_after.z());
+        if (p.turned_deg() > 0.0f)
+          std::printf(" turned %.3g degrees to %.4g %.4g %.4g", p.turned_deg(), p.direction_after.x(),
+                      p.direction_after.y(), p.direction_after.z());
+        if (p.moved_m() == 0.0f && p.turned_deg() == 0.0f) std::printf(" stays where it was");
+        std::printf(" (shadow mismatch %.4f -> %.4f)\n", p.objective_before, p.objective_after);
+      }
       std::printf("%zu shadow-edge pixel pairs\n", fit.edge_pairs);
       std::printf("fitted scene written to %s\n", args->out.c_str());
     };
