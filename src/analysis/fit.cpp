@@ -123,6 +123,121 @@ std::optional<Vec3> emission_seen_by_probes(const std::vector<Probe>& probes, co
   return Vec3(sum / float(n));
 }
 
+// The fit's state: one basis per enabled light, then the background; the
+// bounce light's albedo; the result as it stands.
+class LightingFit {
+ public:
+  LightingFit(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,
+              Progress& progress)
+      : scene_(scene), rays_(rays), gbuffer_(gbuffer), options_(options), progress_(progress),
+        bounce_albedo_(gbuffer.width(), gbuffer.height(), Vec3::Ones()) {
+    result.scene = scene;
+    result.background_before = scene.background;
+    for (const Probe& p : scene.probes) distant_.push_back(remove_local_geometry_from_probe(p, rays));
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+      const Light& light = scene.lights[i];
+      if (!light.enabled) continue;
+      Basis b;
+      b.emission = light.emission();
+      FittedLight report{light.name, light.emission(), light.emission(), "shadows"};
+      if (const auto seen = emission_seen_by_probes(distant_, light)) {
+        b.known = true;
+        b.emission = *seen;
+        report.source = "probe";
+      }
+      light_index_.push_back(i);
+      bases_.push_back(std::move(b));
+      result.lights.push_back(report);
+    }
+    const bool anchored = std::any_of(bases_.begin(), bases_.end(), [](const Basis& b) { return b.known; });
+    if (!anchored && !bases_.empty()) {
+      bases_.front().known = true;  // the scale anchor: see fit.h
+      result.lights.front().source = "kept (scale anchor)";
+    }
+    background_ = bases_.size();
+    bases_.push_back(Basis{Image(), false, scene.background});
+  }
+
+  // Renders the bases with the lights where result.scene has them, solves the
+  // edge equations, and recovers the albedo for the next round's bounce light.
+  void round(int number) {
+    const PhotoAlbedo bounce(scene_.camera, gbuffer_, bounce_albedo_, unseen_);
+    for (size_t k = 0; k < light_index_.size(); ++k) {
+      Lighting lighting;
+      lighting.lights = {unit_light(result.scene.lights[light_index_[k]])};
+      bases_[k].image = render(lighting, bounce);
+    }
+    Lighting sky;
+    sky.environment = Environment::constant(Vec3::Ones());
+    bases_[background_].image = render(sky, bounce);
+
+    const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer_, bases_, background_);
+    result.edge_pairs = pairs.size();
+    for (int c = 0; c < 3; ++c) solve_channel(scene_.photo, bases_, pairs, c);
+    const Vec3& bg = bases_[background_].emission;
+    spdlog::info("fit round {}: {} shadow-edge pixel pairs, background {:.4f} {:.4f} {:.4f}", number, pairs.size(),
+                 bg.x(), bg.y(), bg.z());
+
+    const AlbedoImages albedo = recover_albedo(
+        scene_.photo, IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
+    bounce_albedo_ = albedo.albedo;
+    unseen_ = albedo.mean;
+  }
+
+  // Soft light (a lamp indoors) casts too few sharp shadows to tell the
+  // background from the lights, and the edge fit can land anywhere. The
+  // probes measure the environment directly, but only the part of it they
+  // see: where the edge fit disagrees with their mean radiance by more than a
+  // factor of two, the probes' mean is taken instead.
+  void check_background_against_probes() {
+    if (distant_.empty()) return;
+    Vec3 mean = Vec3::Zero();
+    for (const Probe& p : distant_) mean += mean_radiance(remove_lights_from_probe(p, result.scene.lights));
+    mean /= float(distant_.size());
+    const float ratio = luminance(bases_[background_].emission) / std::max(1e-6f, luminance(mean));
+    if (result.edge_pairs == 0 || ratio < 0.5f || ratio > 2.0f) {
+      bases_[background_].emission = mean;
+      result.background_source = "probe mean (the shadows disagree)";
+    }
+  }
+
+  // Writes the fitted emissions and background into the result.
+  void publish() {
+    for (size_t k = 0; k < light_index_.size(); ++k) {
+      set_emission(result.scene.lights[light_index_[k]], bases_[k].emission);
+      result.lights[k].emission_after = bases_[k].emission;
+    }
+    result.scene.background = result.background_after = bases_[background_].emission;
+  }
+
+  // The illumination of the lighting fitted so far.
+  Image illumination() const {
+    Image sum(gbuffer_.width(), gbuffer_.height());
+    for (size_t i = 0; i < sum.size(); ++i)
+      for (const auto& b : bases_) sum.pixels[i] += b.image.pixels[i].cwiseProduct(b.emission);
+    return sum;
+  }
+
+  FitResult result;
+
+ private:
+  Image render(const Lighting& lighting, const SurfaceAlbedo& bounce) {
+    return render_basis(scene_, rays_, gbuffer_, lighting, bounce, options_, progress_);
+  }
+
+  const Scene& scene_;
+  const RayScene& rays_;
+  const GBuffer& gbuffer_;
+  const FitOptions& options_;
+  Progress& progress_;
+  std::vector<Probe> distant_;     // the probes without the modelled geometry
+  std::vector<size_t> light_index_;  // basis k is result.scene.lights[light_index_[k]]
+  std::vector<Basis> bases_;
+  size_t background_ = 0;          // the background's basis
+  Image bounce_albedo_;            // the last round's albedo (at first: white)
+  Vec3 unseen_ = Vec3::Ones();
+};
+
 }  // namespace
 
 void set_emission(Light& light, const Vec3& emission) {
@@ -135,111 +250,21 @@ void set_emission(Light& light, const Vec3& emission) {
 
 FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,
                        Progress& progress) {
-  FitResult result;
-  result.scene = scene;
-  result.background_before = scene.background;
-
-  std::vector<Probe> distant;
-  for (const Probe& p : scene.probes) distant.push_back(remove_local_geometry_from_probe(p, rays));
-
-  // One basis per enabled light, then the background.
-  std::vector<size_t> light_index;
-  std::vector<Basis> bases;
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
-    const Light& light = scene.lights[i];
-    if (!light.enabled) continue;
-    Basis b;
-    b.emission = light.emission();
-    FittedLight report{light.name, light.emission(), light.emission(), "shadows"};
-    if (const auto seen = emission_seen_by_probes(distant, light)) {
-      b.known = true;
-      b.emission = *seen;
-      report.source = "probe";
-    }
-    light_index.push_back(i);
-    bases.push_back(std::move(b));
-    result.lights.push_back(report);
-  }
-  const bool anchored = std::any_of(bases.begin(), bases.end(), [](const Basis& b) { return b.known; });
-  if (!anchored && !bases.empty()) {
-    bases.front().known = true;  // the scale anchor: see fit.h
-    result.lights.front().source = "kept (scale anchor)";
-  }
-  const size_t background = bases.size();
-  bases.push_back(Basis{Image(), false, scene.background});
-
-  Image bounce_albedo(gbuffer.width(), gbuffer.height(), Vec3::Ones());
-  Vec3 unseen = Vec3::Ones();
-  // The illumination of the lighting fitted so far.
-  const auto illumination = [&] {
-    Image sum(gbuffer.width(), gbuffer.height());
-    for (size_t i = 0; i < sum.size(); ++i)
-      for (const auto& b : bases) sum.pixels[i] += b.image.pixels[i].cwiseProduct(b.emission);
-    return sum;
-  };
-  const auto fit_round = [&](int round) {
-    const PhotoAlbedo bounce(scene.camera, gbuffer, bounce_albedo, unseen);
-    for (size_t k = 0; k < light_index.size(); ++k) {
-      Lighting lighting;
-      lighting.lights = {unit_light(result.scene.lights[light_index[k]])};
-      bases[k].image = render_basis(scene, rays, gbuffer, lighting, bounce, options, progress);
-    }
-    Lighting sky;
-    sky.environment = Environment::constant(Vec3::Ones());
-    bases[background].image = render_basis(scene, rays, gbuffer, sky, bounce, options, progress);
-
-    const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer, bases, background);
-    result.edge_pairs = pairs.size();
-    for (int c = 0; c < 3; ++c) solve_channel(scene.photo, bases, pairs, c);
-    spdlog::info("fit round {}: {} shadow-edge pixel pairs, background {:.4f} {:.4f} {:.4f}", round, pairs.size(),
-                 bases[background].emission.x(), bases[background].emission.y(), bases[background].emission.z());
-
-    // The albedo under this lighting, for the next round's bounce light.
-    const AlbedoImages albedo = recover_albedo(
-        scene.photo, IlluminationImages{illumination(), Image(gbuffer.width(), gbuffer.height())}, gbuffer);
-    bounce_albedo = albedo.albedo;
-    unseen = albedo.mean;
-  };
-
-  // Soft light (a lamp indoors) casts too few sharp shadows to tell the
-  // background from the lights, and the edge fit can land anywhere. The
-  // probes measure the environment directly, but only the part of it they
-  // see: where the edge fit disagrees with their mean radiance by more than a
-  // factor of two, the probes' mean is taken instead.
-  const auto check_background_against_probes = [&] {
-    if (distant.empty()) return;
-    Vec3 mean = Vec3::Zero();
-    for (const Probe& p : distant) mean += mean_radiance(remove_lights_from_probe(p, result.scene.lights));
-    mean /= float(distant.size());
-    const float ratio = luminance(bases[background].emission) / std::max(1e-6f, luminance(mean));
-    if (result.edge_pairs == 0 || ratio < 0.5f || ratio > 2.0f) {
-      bases[background].emission = mean;
-      result.background_source = "probe mean (the shadows disagree)";
-    }
-  };
-  const auto set_fitted_emissions = [&] {
-    for (size_t k = 0; k < light_index.size(); ++k) {
-      set_emission(result.scene.lights[light_index[k]], bases[k].emission);
-      result.lights[k].emission_after = bases[k].emission;
-    }
-  };
-
-  for (int round = 1; round <= options.rounds; ++round) fit_round(round);
-  check_background_against_probes();
-  set_fitted_emissions();
+  LightingFit fit(scene, rays, gbuffer, options, progress);
+  for (int round = 1; round <= options.rounds; ++round) fit.round(round);
+  fit.check_background_against_probes();
+  fit.publish();
 
   // Lights moved to where their shadows fall, then their emission fitted
   // again: a shadow edge in the wrong place misleads the edge equations.
   if (options.refine_placement) {
-    result.placement =
-        refine_light_placement(result.scene, rays, gbuffer, illumination(), options.placement, progress);
-    fit_round(options.rounds + 1);
-    check_background_against_probes();
-    set_fitted_emissions();
+    fit.result.placement =
+        refine_light_placement(fit.result.scene, rays, gbuffer, fit.illumination(), options.placement, progress);
+    fit.round(options.rounds + 1);
+    fit.check_background_against_probes();
+    fit.publish();
   }
-  result.scene.background = bases[background].emission;
-  result.background_after = result.scene.background;
-  return result;
+  return fit.result;
 }
 
 }  // namespace relight
