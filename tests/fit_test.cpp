@@ -2,6 +2,8 @@
 // the background and where the lights are set wrong, the fit finds them
 // again, and the albedo recovered with the fitted lighting is as good as with
 // the true one.
+#include "analysis/fit.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,7 +11,6 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "analysis/fit.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
 #include "reference_scenes.h"
@@ -81,8 +82,8 @@ TEST_P(FitReference, RecoversPowerAndBackground) {
     const float before = placement_error(wrong.lights[i], truth.lights[i]);
     const float after = placement_error(fit.scene.lights[i], truth.lights[i]);
     std::printf("[ figures  ] %s %s: %.3g %s off before the fit, %.3g after\n", c.scene.c_str(),
-                truth.lights[i].name.c_str(), before,
-                truth.lights[i].type == LightType::directional ? "degrees" : "m", after);
+                truth.lights[i].name.c_str(), before, truth.lights[i].type == LightType::directional ? "degrees" : "m",
+                after);
     EXPECT_LE(after, c.placement_tolerance) << "light " << i;
   }
   for (size_t i = 0; i < truth.lights.size(); ++i) {
@@ -93,9 +94,9 @@ TEST_P(FitReference, RecoversPowerAndBackground) {
     for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch] / want[ch], 1.0f, 0.10f) << "light " << i << " channel " << ch;
   }
   const Vec3& bg = fit.scene.background;
-  std::printf("[ figures  ] %s background %.3f %.3f %.3f (true %.3f %.3f %.3f, given x%.2f) from %s\n",
-              c.scene.c_str(), bg.x(), bg.y(), bg.z(), truth.background.x(), truth.background.y(),
-              truth.background.z(), c.background_factor, fit.background_source.c_str());
+  std::printf("[ figures  ] %s background %.3f %.3f %.3f (true %.3f %.3f %.3f, given x%.2f) from %s\n", c.scene.c_str(),
+              bg.x(), bg.y(), bg.z(), truth.background.x(), truth.background.y(), truth.background.z(),
+              c.background_factor, fit.background_source.c_str());
   for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(bg[ch] / truth.background[ch], 1.0f, c.background_tolerance);
 
   const double with_truth = albedo_psnr(truth, rays, gbuffer, folder);

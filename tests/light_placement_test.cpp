@@ -2,12 +2,13 @@
 // example room, its photo made by the path tracer with the known albedo: a
 // lamp moved 20 cm, a sun turned 3 degrees and a spot moved 15 cm and turned
 // 3 degrees go back to where they were; a light already in place stays.
+#include "analysis/light_placement.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "analysis/light_placement.h"
 #include "render/render_illumination.h"
 #include "room_scene.h"
 
@@ -31,8 +32,8 @@ Placed place(const Light& truth, const Light& given) {
   Lighting lighting;
   lighting.lights = {truth};
   lighting.environment = Environment::constant(scene.background);
-  scene.photo = synthesize_photo(gbuffer, scene.camera, Integrator(rays, lighting, &albedo), albedo, 64, 3,
-                                 Progress::silent());
+  scene.photo =
+      synthesize_photo(gbuffer, scene.camera, Integrator(rays, lighting, &albedo), albedo, 64, 3, Progress::silent());
 
   // The illumination of the lighting as given (white surfaces, the bounce
   // light of the known albedo, as the fit recovers it).
@@ -40,7 +41,8 @@ Placed place(const Light& truth, const Light& given) {
   IlluminationOptions options;
   options.paths_per_pixel = 16;
   const Image illumination =
-      render_illumination(gbuffer, scene.camera, Integrator(rays, lighting, &albedo), options, Progress::silent()).surface;
+      render_illumination(gbuffer, scene.camera, Integrator(rays, lighting, &albedo), options, Progress::silent())
+          .surface;
   scene.lights = {given};
   const std::vector<PlacedLight> placed =
       refine_light_placement(scene, rays, gbuffer, illumination, PlacementOptions{}, Progress::silent());

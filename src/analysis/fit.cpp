@@ -30,8 +30,7 @@ Image render_basis(const Scene& scene, const RayScene& rays, const GBuffer& gbuf
   IlluminationOptions illumination;
   illumination.paths_per_pixel = options.paths_per_pixel;
   illumination.seed = options.seed;
-  return render_illumination(gbuffer, scene.camera, integrator, illumination, progress, "fit: light transport")
-      .surface;
+  return render_illumination(gbuffer, scene.camera, integrator, illumination, progress, "fit: light transport").surface;
 }
 
 struct PixelPair {
@@ -129,7 +128,11 @@ class LightingFit {
  public:
   LightingFit(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,
               Progress& progress)
-      : scene_(scene), rays_(rays), gbuffer_(gbuffer), options_(options), progress_(progress),
+      : scene_(scene),
+        rays_(rays),
+        gbuffer_(gbuffer),
+        options_(options),
+        progress_(progress),
         bounce_albedo_(gbuffer.width(), gbuffer.height(), Vec3::Ones()) {
     result.scene = scene;
     result.background_before = scene.background;
@@ -230,11 +233,11 @@ class LightingFit {
   const GBuffer& gbuffer_;
   const FitOptions& options_;
   Progress& progress_;
-  std::vector<Probe> distant_;     // the probes without the modelled geometry
+  std::vector<Probe> distant_;       // the probes without the modelled geometry
   std::vector<size_t> light_index_;  // basis k is result.scene.lights[light_index_[k]]
   std::vector<Basis> bases_;
-  size_t background_ = 0;          // the background's basis
-  Image bounce_albedo_;            // the last round's albedo (at first: white)
+  size_t background_ = 0;  // the background's basis
+  Image bounce_albedo_;    // the last round's albedo (at first: white)
   Vec3 unseen_ = Vec3::Ones();
 };
 

@@ -49,8 +49,8 @@ struct FitResult {
   std::vector<FittedLight> lights;
   Vec3 background_before, background_after;
   std::string background_source = "shadows";  // or the probe mean
-  size_t edge_pairs = 0;  // pixel pairs across shadow edges used by the last round
-  std::vector<PlacedLight> placement;  // with refine_placement
+  size_t edge_pairs = 0;                      // pixel pairs across shadow edges used by the last round
+  std::vector<PlacedLight> placement;         // with refine_placement
 };
 
 FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,

@@ -219,7 +219,7 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
       ++state.evaluations;
       if (level == 0) report.objective_before = state.value;
       coordinate_search(state, placement.dimensions(), kLevels[level].first_step, kLevels[level].last_step,
-                     max_evaluations, objective);
+                        max_evaluations, objective);
     }
     progress.end();
     // The narrow gap sees noise the wide one averages out: where its optimum is

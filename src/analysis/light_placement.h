@@ -28,7 +28,7 @@ namespace relight {
 
 struct PlacementOptions {
   int evaluations_per_dimension = 80;  // per light: 3 dimensions for a point, 2 for a sun, 5 for a spot or area
-  int light_samples = 4;      // per pixel, for lights with a size (fixed samples: a smooth objective)
+  int light_samples = 4;               // per pixel, for lights with a size (fixed samples: a smooth objective)
   // The first step of the search (it ends at 1/64 of it): how far off the
   // given placement may be.
   float position_step = 0.25f;      // m (point, spot, area)
@@ -37,8 +37,8 @@ struct PlacementOptions {
 
 struct PlacedLight {
   std::string name;
-  Vec3 position_before, position_after;    // m
-  Vec3 direction_before, direction_after;  // unit
+  Vec3 position_before, position_after;                  // m
+  Vec3 direction_before, direction_after;                // unit
   double objective_before = 0.0, objective_after = 0.0;  // the mean mismatch, pairs 16 pixels apart
 
   float moved_m() const;
