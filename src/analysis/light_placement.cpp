@@ -87,6 +87,7 @@ class LightPlacement {
   bool moves() const { return light_.type != LightType::directional; }
   bool turns() const { return light_.type != LightType::point; }
   int dimensions() const { return (moves() ? 3 : 0) + (turns() ? 2 : 0); }
+  bool is_turn(size_t axis) const { return turns() && axis < 2; }
 
   Light at(const Point& x) const {
     Light l = light_;
@@ -112,32 +113,80 @@ class LightPlacement {
   float aim_distance_ = 1.0f;  // m, along the direction to what the light points at
 };
 
+// The lights being placed together: where each stands in its search space,
+// its direct light there, and the illumination all of them give with the rest.
+// Moving one light re-renders only that light's direct light.
+class Placements {
+ public:
+  Placements(std::vector<LightPlacement> lights, std::vector<std::vector<float>> direct, std::vector<float> rest,
+             const std::function<std::vector<float>(const Light&)>& direct_of)
+      : lights_(std::move(lights)),
+        direct_(std::move(direct)),
+        x_(lights_.size()),
+        total_(std::move(rest)),
+        direct_of_(direct_of) {
+    for (const auto& d : direct_)
+      for (size_t i = 0; i < total_.size(); ++i) total_[i] += d[i];
+  }
+
+  // Every search axis as (light, axis of its space), the lights' turns first:
+  // a spot's cone, the widest edge it makes, is set by where it points.
+  std::vector<std::pair<size_t, size_t>> axes() const {
+    std::vector<std::pair<size_t, size_t>> a;
+    for (const bool turns : {true, false})
+      for (size_t k = 0; k < lights_.size(); ++k)
+        for (int i = 0; i < lights_[k].dimensions(); ++i)
+          if (lights_[k].is_turn(size_t(i)) == turns) a.emplace_back(k, size_t(i));
+    return a;
+  }
+  const std::vector<float>& illumination() const { return total_; }
+  const LightPlacement::Point& at(size_t light) const { return x_[light]; }
+  Light light(size_t k) const { return lights_[k].at(x_[k]); }
+
+  // The illumination with light k at x instead, and its direct light there.
+  std::pair<std::vector<float>, std::vector<float>> trial(size_t k, const LightPlacement::Point& x) const {
+    std::vector<float> direct = direct_of_(lights_[k].at(x));
+    std::vector<float> total = total_;
+    for (size_t i = 0; i < total.size(); ++i) total[i] += direct[i] - direct_[k][i];
+    return {std::move(total), std::move(direct)};
+  }
+  void move(size_t k, const LightPlacement::Point& x, std::vector<float> total, std::vector<float> direct) {
+    x_[k] = x, total_ = std::move(total), direct_[k] = std::move(direct);
+  }
+
+ private:
+  std::vector<LightPlacement> lights_;
+  std::vector<std::vector<float>> direct_;
+  std::vector<LightPlacement::Point> x_;
+  std::vector<float> total_;
+  std::function<std::vector<float>(const Light&)> direct_of_;
+};
+
 // Coordinate search: tries a step each way along each axis in turn and moves
 // to the first better point, starting again from the first axis; when no
 // axis gives a better point the step halves, until it is below `min_step` or
-// the evaluations run out. Turns come first among the axes: a spot's cone,
-// the widest edge it makes, is set by where it points. (Jumping on along the
-// last move, as Hooke and Jeeves do, overshot the spot's valley; keeping on
-// through the axes after a move drifted a lamp's soft shadows 3 cm.)
-struct SearchState {
-  LightPlacement::Point x{};
-  double value = 0.0;
-  int evaluations = 0;
-};
-
-void coordinate_search(SearchState& s, int dimensions, float step, float min_step, int max_evaluations,
-                       const std::function<double(const LightPlacement::Point&)>& objective) {
-  while (step >= min_step && s.evaluations < max_evaluations) {
+// the evaluations run out. (Jumping on along the last move, as Hooke and
+// Jeeves do, overshot a spot's valley; keeping on through the axes after a
+// move drifted a lamp's soft shadows 3 cm.)
+void coordinate_search(Placements& placements, const PlanePairs& pairs, float step, float min_step, int& evaluations,
+                       int max_evaluations, Progress& progress) {
+  const auto axes = placements.axes();
+  double value = mismatch(pairs, placements.illumination());
+  while (step >= min_step && evaluations < max_evaluations) {
     bool improved = false;
-    for (int axis = 0; axis < dimensions && !improved; ++axis)
+    for (size_t a = 0; a < axes.size() && !improved; ++a)
       for (const float sign : {1.0f, -1.0f}) {
-        if (s.evaluations >= max_evaluations) return;
-        LightPlacement::Point y = s.x;
-        y[size_t(axis)] += sign * step;
-        const double v = objective(y);
-        ++s.evaluations;
-        if (v < s.value) {
-          s.x = y, s.value = v, improved = true;
+        if (evaluations >= max_evaluations) return;
+        const auto [k, axis] = axes[a];
+        LightPlacement::Point x = placements.at(k);
+        x[axis] += sign * step;
+        auto [total, direct] = placements.trial(k, x);
+        const double v = mismatch(pairs, total);
+        ++evaluations;
+        progress.advance();
+        if (v < value) {
+          placements.move(k, x, std::move(total), std::move(direct));
+          value = v, improved = true;
           break;
         }
       }
@@ -190,49 +239,40 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
   std::vector<PlanePairs> pairs;
   for (const Level& level : kLevels) pairs.push_back(plane_pairs(gbuffer, photo, level.gap));
 
+  std::vector<LightPlacement> searched;
+  for (const size_t i : enabled) searched.emplace_back(scene.lights[i], rays, options);
+  Placements placements(searched, direct, rest, direct_of);
+  const Placements start = placements;
+  int dimensions = 0;
+  for (const auto& l : searched) dimensions += l.dimensions();
+  const int max_evaluations = options.evaluations_per_dimension * dimensions;
+  progress.begin("fit: placing the lights", max_evaluations);
+  int evaluations = 0;
+  for (size_t level = 0; level < std::size(kLevels); ++level)
+    coordinate_search(placements, pairs[level], kLevels[level].first_step, kLevels[level].last_step, evaluations,
+                      max_evaluations, progress);
+  progress.end();
+
+  // The narrow gap sees noise the wide one averages out: where its optimum is
+  // worse on the wide gap than the start, the lights stay.
+  const double before = mismatch(pairs.front(), start.illumination());
+  double after = mismatch(pairs.front(), placements.illumination());
+  if (after >= before) placements = start, after = before;
+
   std::vector<PlacedLight> placed;
   for (size_t k = 0; k < enabled.size(); ++k) {
     Light& light = scene.lights[enabled[k]];
-    const LightPlacement placement(light, rays, options);
-    // The illumination with light k where the search puts it.
-    std::vector<float> others = rest;
-    for (size_t j = 0; j < enabled.size(); ++j)
-      if (j != k)
-        for (size_t i = 0; i < others.size(); ++i) others[i] += direct[j][i];
-    const auto illumination_at = [&](const LightPlacement::Point& x) {
-      std::vector<float> l = direct_of(placement.at(x));
-      for (size_t i = 0; i < l.size(); ++i) l[i] += others[i];
-      return l;
-    };
-
-    const int max_evaluations = options.evaluations_per_dimension * placement.dimensions();
-    progress.begin("fit: placing " + light.name, max_evaluations);
-    PlacedLight report{light.name, light.position, light.position, light.direction.normalized(),
-                       light.direction.normalized()};
-    SearchState state;
-    for (size_t level = 0; level < std::size(kLevels); ++level) {
-      const auto objective = [&](const LightPlacement::Point& x) {
-        progress.advance();
-        return mismatch(pairs[level], illumination_at(x));
-      };
-      state.value = objective(state.x);
-      ++state.evaluations;
-      if (level == 0) report.objective_before = state.value;
-      coordinate_search(state, placement.dimensions(), kLevels[level].first_step, kLevels[level].last_step,
-                        max_evaluations, objective);
-    }
-    progress.end();
-    // The narrow gap sees noise the wide one averages out: where its optimum is
-    // worse on the wide gap than the start, the light stays.
-    report.objective_after = mismatch(pairs.front(), illumination_at(state.x));
-    if (report.objective_after >= report.objective_before) state.x = {};
-    report.objective_after = std::min(report.objective_after, report.objective_before);
-    light = placement.at(state.x);
-    direct[k] = direct_of(light);
+    PlacedLight report;
+    report.name = light.name;
+    report.position_before = light.position;
+    report.direction_before = light.direction.normalized();
+    report.objective_before = before;
+    report.objective_after = after;
+    light = placements.light(k);
     report.position_after = light.position;
     report.direction_after = light.direction.normalized();
     spdlog::info("fit: {} moved {:.3g} m, turned {:.3g} degrees (shadow mismatch {:.4f} -> {:.4f})", light.name,
-                 report.moved_m(), report.turned_deg(), report.objective_before, report.objective_after);
+                 report.moved_m(), report.turned_deg(), before, after);
     placed.push_back(report);
   }
   return placed;

@@ -12,7 +12,9 @@
 // edge costs the same wherever the shadows are). A wide gap first (a basin of
 // attraction as wide as the gap, where a 1-pixel gap sees only shadows already
 // within a pixel of the truth), then a narrow one; coordinate search on the
-// light's position (point, spot, area) and direction (sun, spot, area).
+// lights' positions (point, spot, area) and directions (sun, spot, area), all
+// the lights together: a light still misplaced leaves its fringes in what
+// the others are judged by.
 #pragma once
 
 #include <string>
@@ -37,9 +39,10 @@ struct PlacementOptions {
 
 struct PlacedLight {
   std::string name;
-  Vec3 position_before, position_after;                  // m
-  Vec3 direction_before, direction_after;                // unit
-  double objective_before = 0.0, objective_after = 0.0;  // the mean mismatch, pairs 16 pixels apart
+  Vec3 position_before, position_after;    // m
+  Vec3 direction_before, direction_after;  // unit
+  // The mean mismatch of all the lights together, pairs 16 pixels apart.
+  double objective_before = 0.0, objective_after = 0.0;
 
   float moved_m() const;
   float turned_deg() const;
