@@ -107,6 +107,20 @@ TEST_P(FitReference, RecoversPowerAndBackground) {
   EXPECT_GE(with_fit, with_truth - 1.0);
 }
 
+// The example room at 320x240: its soft lamp casts too few sharp shadow
+// edges to fit the background from, and it has no probe; the fit keeps the
+// background as given (and the lamp, the scale anchor) and says so.
+TEST(FitExample, KeepsWhatTooFewShadowEdgesCannotTell) {
+  const Scene scene = load_scene(fs::path(RELIGHT_SOURCE_DIR) / "examples" / "room" / "scene.json");
+  const RayScene rays(scene.mesh);
+  const GBuffer gbuffer = scene_gbuffer(scene, rays, AnalysisOptions{});
+  const FitResult fit = fit_lighting(scene, rays, gbuffer, FitOptions{}, Progress::silent());
+  EXPECT_LT(fit.edge_pairs, 200u);
+  EXPECT_EQ(fit.background_source, "kept: too few shadow edges to fit from");
+  for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(fit.scene.background[c], scene.background[c]);
+  EXPECT_EQ(fit.lights.front().source, "kept (scale anchor)");
+}
+
 // The bookcase's soft lamp casts too few sharp shadows to fit the background
 // from; it comes from the probe's mean radiance, which sees only part of the
 // room's environment (the rest is behind the wall and floor, and filled from

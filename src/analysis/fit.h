@@ -12,9 +12,11 @@
 //    background and the lights no probe sees. The overall scale of light and
 //    albedo cannot be told apart from one photo: without a probe it is anchored
 //    by keeping the first light as the user gave it.
-// Where the shadows are too soft to tell background from lights (the fit
-// disagrees with the probes' mean radiance by over a factor of two), the
-// background is the probes' mean radiance (without lights and geometry).
+// A round with fewer than 200 such pairs solves nothing: the unknowns keep
+// the values given. Where the shadows are too soft to tell background from
+// lights (no round solved, or the fit disagrees with the probes' mean
+// radiance by over a factor of two), the background is the probes' mean
+// radiance (without lights and geometry).
 // Each round's bounce light uses the albedo recovered with the lighting
 // fitted in the round before (the first: white surfaces).
 // 3. Optionally, the lights are then moved to where their shadows fall
@@ -41,14 +43,14 @@ struct FitOptions {
 struct FittedLight {
   std::string name;
   Vec3 emission_before, emission_after;  // colour x power (x irradiance for a sun)
-  std::string source;                    // "probe", "shadows" or "kept (scale anchor)"
+  std::string source;  // "probe", "shadows", "kept (scale anchor)" or "kept: too few shadow edges to fit from"
 };
 
 struct FitResult {
   Scene scene;  // the input scene with the fitted lights and background
   std::vector<FittedLight> lights;
   Vec3 background_before, background_after;
-  std::string background_source = "shadows";  // or the probe mean
+  std::string background_source = "shadows";  // or the probe mean, or kept
   size_t edge_pairs = 0;                      // pixel pairs across shadow edges used by the last round
   std::vector<PlacedLight> placement;         // with refine_placement
 };
