@@ -44,7 +44,7 @@ void misplace(Light& light, float amount) {
   if (light.type == LightType::directional) {
     const Vec3 d = light.direction.normalized();
     const Vec3 across = (d.unitOrthogonal() + d.cross(d.unitOrthogonal()) * 0.6f).normalized();
-    light.direction = (d + std::tan(amount * 3.14159265f / 180.0f) * across).normalized();
+    light.direction = (d + std::tan(radians(amount)) * across).normalized();
   } else {
     light.position += amount * Vec3(0.7f, -0.5f, 0.5f).normalized();
   }
@@ -53,8 +53,7 @@ void misplace(Light& light, float amount) {
 // How far `light` is from `truth`: degrees for a sun, metres otherwise.
 float placement_error(const Light& light, const Light& truth) {
   if (light.type != LightType::directional) return (light.position - truth.position).norm();
-  const float c = light.direction.normalized().dot(truth.direction.normalized());
-  return std::acos(std::clamp(c, -1.0f, 1.0f)) * 180.0f / 3.14159265f;
+  return angle_degrees(light.direction, truth.direction);
 }
 
 class FitReference : public testing::TestWithParam<Case> {};

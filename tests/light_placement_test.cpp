@@ -17,8 +17,6 @@ using namespace relight;
 
 namespace {
 
-constexpr float kDegree = 3.14159265f / 180.0f;
-
 struct Placed {
   float before_m, after_m;      // position error
   float before_deg, after_deg;  // direction error
@@ -54,9 +52,7 @@ std::vector<Placed> place(const std::vector<Light>& truths, const std::vector<Li
   for (size_t i = 0; i < truths.size(); ++i) {
     const Light& truth = truths[i];
     const auto metres = [&](const Light& l) { return (l.position - truth.position).norm(); };
-    const auto degrees = [&](const Light& l) {
-      return std::acos(std::min(1.0f, l.direction.normalized().dot(truth.direction.normalized()))) / kDegree;
-    };
+    const auto degrees = [&](const Light& l) { return angle_degrees(l.direction, truth.direction); };
     const Placed p{metres(givens[i]), metres(scene.lights[i]), degrees(givens[i]), degrees(scene.lights[i])};
     std::printf("[ figures  ] %s: %.3g m and %.3g degrees off before, %.3g m and %.3g degrees after\n",
                 truth.name.c_str(), p.before_m, p.before_deg, p.after_m, p.after_deg);
@@ -70,7 +66,7 @@ Placed place(const Light& truth, const Light& given) { return place(std::vector{
 // `d` turned by `degrees` about an axis across it.
 Vec3 turned(const Vec3& d, float degrees) {
   const Vec3 across = Vec3(0.6f, -0.8f, 0.0f).cross(d).normalized();
-  return (d + std::tan(degrees * kDegree) * across).normalized();
+  return (d + std::tan(radians(degrees)) * across).normalized();
 }
 
 Light room_lamp() { return example::room_scene(8, 6).lights.front(); }

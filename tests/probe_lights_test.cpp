@@ -123,8 +123,12 @@ TEST(ProbeCleanup, PixelsThatShowAnyGeometryTakeTheFillAndTheRestStay) {
   const Probe cleaned = remove_local_geometry_from_probe(raw, floor, fill);
   int mixed = 0;
   for (size_t i = 0; i < coverage.size(); ++i) {
-    if (coverage[i] == 0.0f) EXPECT_EQ(cleaned.image.pixels[i], Vec3::Ones()) << "pixel " << i;
-    if (coverage[i] >= 0.1f) EXPECT_EQ(cleaned.image.pixels[i], fill) << "pixel " << i << ", " << coverage[i] << " floor";
+    if (coverage[i] == 0.0f) {
+      EXPECT_EQ(cleaned.image.pixels[i], Vec3::Ones()) << "pixel " << i;
+    }
+    if (coverage[i] >= 0.1f) {
+      EXPECT_EQ(cleaned.image.pixels[i], fill) << "pixel " << i << ", " << coverage[i] << " floor";
+    }
     mixed += coverage[i] > 0.0f && coverage[i] < 1.0f;
   }
   EXPECT_GT(mixed, 16);  // the floor's edge crosses pixels: the case that matters

@@ -12,8 +12,6 @@ namespace relight {
 
 namespace {
 
-constexpr float kDegree = 3.14159265f / 180.0f;
-
 // Pixel pairs a gap apart, right and down, both fully covered and on one
 // plane (a shadow edge across a bend would also test the shading model).
 struct PlanePairs {
@@ -94,7 +92,7 @@ class LightPlacement {
     const Vec3 d = light_.direction.normalized();
     Vec3 turned = d;
     if (turns()) {
-      turned = (d + std::tan(x[0] * degrees_ * kDegree) * across_u_ + std::tan(x[1] * degrees_ * kDegree) * across_v_)
+      turned = (d + std::tan(radians(x[0] * degrees_)) * across_u_ + std::tan(radians(x[1] * degrees_)) * across_v_)
                    .normalized();
       l.direction = turned;
     }
@@ -198,9 +196,7 @@ void coordinate_search(Placements& placements, const PlanePairs& pairs, float st
 
 float PlacedLight::moved_m() const { return (position_after - position_before).norm(); }
 
-float PlacedLight::turned_deg() const {
-  return std::acos(std::clamp(direction_before.dot(direction_after), -1.0f, 1.0f)) / kDegree;
-}
+float PlacedLight::turned_deg() const { return angle_degrees(direction_before, direction_after); }
 
 std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
                                                 const Image& illumination, const PlacementOptions& options,

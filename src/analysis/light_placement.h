@@ -34,7 +34,7 @@ struct PlacementOptions {
   // The first step of the search (it ends at 1/64 of it): how far off the
   // given placement may be.
   float position_step = 0.25f;      // m (point, spot, area)
-  float direction_step_deg = 4.0f;  // sun
+  float direction_step_deg = 4.0f;  // sun, spot, area
 };
 
 struct PlacedLight {
@@ -48,9 +48,9 @@ struct PlacedLight {
   float turned_deg() const;
 };
 
-// Moves (and turns) each enabled light of `scene` to where its shadows and
-// its light's edges best match the photo. `illumination`: the illumination (white surfaces, bounce light
-// included) of the scene's lighting as it is, per pixel.
+// Moves (and turns) the enabled lights of `scene` to where their shadows and
+// a spot's cone best match the photo. `illumination`: the illumination
+// (white surfaces, bounce light included) of the scene's lighting as it is.
 std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
                                                 const Image& illumination, const PlacementOptions& options,
                                                 Progress& progress);

@@ -54,14 +54,15 @@ void add_fit_command(CLI::App& app, Action& action) {
                   fit.background_before.y(), fit.background_before.z(), fit.background_after.x(),
                   fit.background_after.y(), fit.background_after.z(), fit.background_source.c_str());
       for (const auto& p : fit.placement) {
+        const float moved = p.moved_m(), turned = p.turned_deg();
         std::printf("%-16s", p.name.c_str());
-        if (p.moved_m() > 0.0f)
-          std::printf(" moved %.3g m to %.4g %.4g %.4g", p.moved_m(), p.position_after.x(), p.position_after.y(),
+        if (moved > 0.0f)
+          std::printf(" moved %.3g m to %.4g %.4g %.4g", moved, p.position_after.x(), p.position_after.y(),
                       p.position_after.z());
-        if (p.turned_deg() > 0.0f)
-          std::printf(" turned %.3g degrees to %.4g %.4g %.4g", p.turned_deg(), p.direction_after.x(),
-                      p.direction_after.y(), p.direction_after.z());
-        if (p.moved_m() == 0.0f && p.turned_deg() == 0.0f) std::printf(" stays where it was");
+        if (turned > 0.0f)
+          std::printf(" turned %.3g degrees to %.4g %.4g %.4g", turned, p.direction_after.x(), p.direction_after.y(),
+                      p.direction_after.z());
+        if (moved == 0.0f && turned == 0.0f) std::printf(" stays where it was");
         std::printf(" (shadow mismatch %.4f -> %.4f)\n", p.objective_before, p.objective_after);
       }
       std::printf("%zu shadow-edge pixel pairs\n", fit.edge_pairs);

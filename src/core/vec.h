@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -17,12 +18,15 @@ inline constexpr float kInvPi = 1.0f / kPi;
 
 inline float radians(float degrees) { return degrees * kPi / 180.0f; }
 
+// The angle between two directions, in degrees.
+inline float angle_degrees(const Vec3& a, const Vec3& b) {
+  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0f, 1.0f)) * 180.0f / kPi;
+}
+
 // Rec. 709 luminance of a linear RGB value.
 inline float luminance(const Vec3& c) { return 0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z(); }
 
-inline bool is_finite(const Vec3& v) {
-  return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
-}
+inline bool is_finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
 // Two unit vectors t, b completing the unit vector n to a right-handed
 // orthonormal frame (Duff et al. 2017, branchless).
