@@ -10,11 +10,21 @@
 
 namespace relight {
 
+// The albedo of one triangle of the scene mesh.
+struct TriangleAlbedo {
+  uint32_t triangle;
+  Vec3 albedo;
+};
+
 struct AlbedoImages {
-  Image albedo;           // per pixel, the surface's own albedo (not coverage-weighted)
-  Image albedo_coverage;  // albedo x coverage: 0 on the background, like albedo_gt.exr
+  Image albedo;                      // per pixel, the surface's own albedo (not coverage-weighted)
+  Image albedo_coverage;             // albedo x coverage: 0 on the background, like albedo_gt.exr
   Vec3 mean = Vec3::Constant(0.5f);  // mean over reliable pixels; the default for unseen surfaces
-  size_t filled = 0;      // pixels filled from neighbours or the mean
+  size_t filled = 0;                 // pixels filled from neighbours or the mean
+  // Triangles the camera does not see whose albedo a probe shows (their
+  // radiance in the probe over their illumination): for the light bounced
+  // off them in later renders.
+  std::vector<TriangleAlbedo> unseen_triangles;
 };
 
 AlbedoImages recover_albedo(const Image& photo, const IlluminationImages& illumination, const GBuffer& gbuffer);

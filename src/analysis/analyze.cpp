@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "analysis/photo_radiance.h"
 #include "analysis/radiosity_illumination.h"
 #include "analysis/surface_albedo.h"
 #include "core/error.h"
@@ -25,6 +26,14 @@ const char* to_string(AnalysisMethod m) { return m == AnalysisMethod::radiosity 
 std::optional<AnalysisMethod> parse_analysis_method(const std::string& s) {
   if (s == "path") return AnalysisMethod::path;
   if (s == "radiosity") return AnalysisMethod::radiosity;
+  return std::nullopt;
+}
+
+const char* to_string(BounceSource s) { return s == BounceSource::photo ? "photo" : "albedo"; }
+
+std::optional<BounceSource> parse_bounce_source(const std::string& s) {
+  if (s == "photo") return BounceSource::photo;
+  if (s == "albedo") return BounceSource::albedo;
   return std::nullopt;
 }
 
@@ -66,6 +75,37 @@ bool no_light_reaches_the_view(const Image& surface_illumination, const std::vec
   return true;
 }
 
+// How far the analysis explains the photo: albedo x the illumination
+// rendered back with that albedo on every surface (what rendering the
+// scene's own lights gives), against the photo, over the pixels that see
+// only geometry. Compared in blocks of kResidualBlock^2 pixels, so that the
+// render's noise averages out and what remains is bias: light the analysis
+// missed or counted twice. Returns sum |block difference| / sum block photo.
+constexpr int kResidualBlock = 8;
+constexpr int kResidualPathsDivisor = 4;  // the render back takes paths_per_pixel / this
+constexpr float kLargeResidual = 0.05f;   // above: warn
+constexpr int kProbeAlbedoPaths = 16;     // per probe pixel, for the albedo of what only a probe shows
+
+float residual_of(const Image& photo, const Image& albedo, const Image& illumination,
+                  const std::vector<float>& coverage) {
+  const int w = photo.width, h = photo.height;
+  double difference = 0.0, total = 0.0;
+  for (int by = 0; by < h; by += kResidualBlock)
+    for (int bx = 0; bx < w; bx += kResidualBlock) {
+      double p = 0.0, r = 0.0;
+      for (int y = by; y < std::min(h, by + kResidualBlock); ++y)
+        for (int x = bx; x < std::min(w, bx + kResidualBlock); ++x) {
+          const size_t i = size_t(y) * w + x;
+          if (coverage[i] < 1.0f) continue;
+          p += luminance(photo.pixels[i]);
+          r += luminance(albedo.pixels[i].cwiseProduct(illumination.pixels[i]));
+        }
+      difference += std::abs(r - p);
+      total += p;
+    }
+  return total > 0.0 ? float(difference / total) : 0.0f;
+}
+
 // The images of the analysis folder that later renders read. analysis.json is
 // written after them and records their hash, so a folder whose images are not
 // the ones it describes (an analyze killed while rewriting the folder, or a
@@ -85,23 +125,43 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   check_strategy(scene, options.strategy);
   Analysis result;
   result.options = options;
+  // The photo's radiance serves the path tracer's interreflection only.
+  if (!options.interreflection || options.method != AnalysisMethod::path)
+    result.options.bounce_source = BounceSource::albedo;
   result.coverage = gbuffer.coverage();
   const Lighting lighting = strategy_lighting(scene, rays, options.strategy);
   IntegratorOptions integrator_options;
   integrator_options.max_bounces = options.max_bounces;
   std::unique_ptr<RadiosityIllumination> radiosity;
   if (options.method == AnalysisMethod::radiosity)
-    radiosity = std::make_unique<RadiosityIllumination>(scene, rays, gbuffer, lighting, radiosity_options(options),
-                                                        options.direct_per_pixel, illumination_options(options),
-                                                        progress);
-  // The illumination with `albedo` on the surfaces light bounces off.
-  const auto render = [&](const SurfaceAlbedo& albedo, const std::string& label) {
+    radiosity =
+        std::make_unique<RadiosityIllumination>(scene, rays, gbuffer, lighting, radiosity_options(options),
+                                                options.direct_per_pixel, illumination_options(options), progress);
+  // Light bounced off what the photo shows is the photo's radiance there;
+  // `albedo` then matters only on the surfaces the camera does not see.
+  std::unique_ptr<PhotoRadiance> photo_radiance;
+  if (result.options.bounce_source == BounceSource::photo) {
+    photo_radiance =
+        std::make_unique<PhotoRadiance>(scene.camera, gbuffer, scene.photo, scene.probes, rays, scene.lights);
+    spdlog::info("photo radiance usable on {:.1f} % of the geometry's pixels", 100.0 * photo_radiance->usable_share());
+  }
+  // The illumination with `albedo` on the surfaces light bounces off (and
+  // with the photo's radiance where `known` gives it).
+  const auto render_with = [&](const SurfaceAlbedo& albedo, const KnownRadiance* known,
+                               const IlluminationOptions& pixel_options, const std::string& label) {
     if (radiosity) return radiosity->render(albedo);
-    const Integrator integrator(rays, lighting, &albedo, integrator_options);
-    return render_illumination(gbuffer, scene.camera, integrator, illumination_options(options), progress, label);
+    const Integrator integrator(rays, lighting, &albedo, integrator_options, known);
+    return render_illumination(gbuffer, scene.camera, integrator, pixel_options, progress, label);
+  };
+  const auto render = [&](const SurfaceAlbedo& albedo, const std::string& label) {
+    return render_with(albedo, photo_radiance.get(), illumination_options(options), label);
   };
 
-  result.illumination = render(WhiteAlbedo(), "initial illumination");
+  // Before any albedo is known, the surfaces the photo does not show reflect
+  // a neutral mid grey when the photo gives the rest (white, the thesis's
+  // initial illumination, otherwise).
+  result.illumination = photo_radiance ? render(UniformAlbedo(AlbedoImages().mean), "illumination")
+                                       : render(WhiteAlbedo(), "initial illumination");
   if (no_light_reaches_the_view(result.illumination.surface, result.coverage))
     throw InputError(scene.path.string(), "/camera",
                      "no light reaches any surface the camera sees: is the camera inside the geometry, or every "
@@ -114,10 +174,20 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   // bounce light makes it too bright, which makes too much bounce light), so
   // each render bounces light off the mean of the last two albedos.
   Image bounce = result.albedo.albedo;
+  // The triangles no pixel shows take the albedo the probes show them with.
+  const auto unseen_triangles = [&](const SurfaceAlbedo& albedo) {
+    if (!photo_radiance) return std::vector<TriangleAlbedo>();
+    std::vector<uint8_t> wanted = triangles_in_view(gbuffer, scene.mesh.triangles.size());
+    for (uint8_t& w : wanted) w = !w;
+    const Integrator integrator(rays, lighting, &albedo, integrator_options, photo_radiance.get());
+    return photo_radiance->probe_albedo(integrator, wanted, kProbeAlbedoPaths, options.seed);
+  };
+  result.albedo.unseen_triangles = unseen_triangles(PhotoAlbedo(scene.camera, gbuffer, bounce, result.albedo.mean));
   for (int it = 0; options.interreflection && it < options.max_iterations; ++it) {
-    const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, bounce, result.albedo.mean);
+    const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, bounce, result.albedo.mean, result.albedo.unseen_triangles);
     IlluminationImages illum = render(bounce_albedo, "interreflection " + std::to_string(it + 1));
     AlbedoImages next = recover_albedo(scene.photo, illum, gbuffer);
+    next.unseen_triangles = result.albedo.unseen_triangles;
     const float change = mean_abs_change(next.albedo, bounce, result.coverage);
     for (size_t i = 0; i < bounce.size(); ++i) bounce.pixels[i] = 0.5f * (bounce.pixels[i] + next.albedo.pixels[i]);
     result.illumination = std::move(illum);
@@ -127,6 +197,20 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     spdlog::info("interreflection pass {}: mean albedo change {:.4f}", it + 1, change);
     if (change < options.tolerance) break;
   }
+
+  // The photo rendered back from the analysis, with fewer paths (the
+  // residual compares blocks, where noise averages out).
+  IlluminationOptions back_options = illumination_options(options);
+  back_options.paths_per_pixel = std::max(1, options.paths_per_pixel / kResidualPathsDivisor);
+  const PhotoAlbedo final_albedo(scene.camera, gbuffer, result.albedo.albedo, result.albedo.mean,
+                                 result.albedo.unseen_triangles);
+  const Image back = render_with(final_albedo, nullptr, back_options, "residual").surface;
+  result.residual = residual_of(scene.photo, result.albedo.albedo, back, result.coverage);
+  if (result.residual > kLargeResidual)
+    spdlog::warn(
+        "{}: albedo x illumination rendered back is {:.1f} % from the photo: the lights, probes or "
+        "geometry do not explain it (or the analysis did not converge)",
+        scene.path.string(), 100.0 * result.residual);
   return result;
 }
 
@@ -139,11 +223,14 @@ std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& optio
   hash.add_text(fmt::format("{} {} {} {} {} {} {}", to_string(options.strategy), options.paths_per_pixel,
                             options.gbuffer_samples, options.seed, options.max_bounces, options.interreflection,
                             options.denoise));
+  // Added only for the photo's radiance, so that analyses made before it
+  // existed stay valid.
+  if (options.bounce_source == BounceSource::photo) hash.add_text(" bounce-source photo");
   // Added only for radiosity, so that path analyses made before the method
   // existed stay valid.
   if (options.method == AnalysisMethod::radiosity)
-    hash.add_text(fmt::format(" radiosity {} {} {}", options.node_samples, options.gather_rays,
-                              options.direct_per_pixel));
+    hash.add_text(
+        fmt::format(" radiosity {} {} {}", options.node_samples, options.gather_rays, options.direct_per_pixel));
   return hash.hex();
 }
 
@@ -175,6 +262,7 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   j["seed"] = a.options.seed;
   j["max_bounces"] = a.options.max_bounces;
   j["interreflection"] = a.options.interreflection;
+  j["bounce_source"] = to_string(a.options.bounce_source);
   j["denoise"] = a.options.denoise;
   if (a.options.method == AnalysisMethod::radiosity) {
     j["node_samples"] = a.options.node_samples;
@@ -182,10 +270,15 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
     j["direct_light"] = a.options.direct_per_pixel ? "pixels" : "nodes";
   }
   j["iterations"] = a.iterations;
+  j["residual"] = a.residual;
   j["width"] = w;
   j["height"] = h;
   j["unseen_albedo"] = {a.albedo.mean.x(), a.albedo.mean.y(), a.albedo.mean.z()};
   j["filled_pixels"] = a.albedo.filled;
+  nlohmann::json triangles = nlohmann::json::array();
+  for (const TriangleAlbedo& t : a.albedo.unseen_triangles)
+    triangles.push_back({t.triangle, t.albedo.x(), t.albedo.y(), t.albedo.z()});
+  j["unseen_triangles"] = std::move(triangles);
   write_text_atomically(folder / "analysis.json", j.dump(2) + "\n");
 }
 
@@ -208,6 +301,7 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
     a.options.seed = j.at("seed").get<uint64_t>();
     a.options.max_bounces = j.at("max_bounces").get<int>();
     a.options.interreflection = j.at("interreflection").get<bool>();
+    a.options.bounce_source = parse_bounce_source(j.value("bounce_source", std::string("albedo"))).value();
     a.options.denoise = j.at("denoise").get<bool>();
     if (a.options.method == AnalysisMethod::radiosity) {
       a.options.node_samples = j.at("node_samples").get<int>();
@@ -215,8 +309,16 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
       a.options.direct_per_pixel = j.at("direct_light").get<std::string>() == "pixels";
     }
     a.iterations = j.at("iterations").get<int>();
+    a.residual = j.value("residual", 0.0f);
     const auto& u = j.at("unseen_albedo");
     a.albedo.mean = Vec3(u.at(0).get<float>(), u.at(1).get<float>(), u.at(2).get<float>());
+    for (const auto& t : j.value("unseen_triangles", nlohmann::json::array())) {
+      const uint32_t triangle = t.at(0).get<uint32_t>();
+      if (triangle >= scene.mesh.triangles.size())
+        throw InputError(meta.string(), "/unseen_triangles", "names a triangle the geometry does not have");
+      a.albedo.unseen_triangles.push_back(
+          {triangle, Vec3(t.at(1).get<float>(), t.at(2).get<float>(), t.at(3).get<float>())});
+    }
     if (j.at("width").get<int>() != scene.photo.width || j.at("height").get<int>() != scene.photo.height)
       throw InputError(meta.string(), "/width", "the analysis was made for a photo of another size");
     if (j.value("input_hash", std::string()) != analysis_input_hash(scene, a.options))

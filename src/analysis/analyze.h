@@ -15,8 +15,8 @@
 #include "analysis/albedo.h"
 #include "analysis/strategy.h"
 #include "core/progress.h"
-#include "render/radiosity.h"
 #include "render/gbuffer.h"
+#include "render/radiosity.h"
 #include "scene/scene.h"
 
 namespace relight {
@@ -26,20 +26,28 @@ enum class AnalysisMethod { path, radiosity };
 const char* to_string(AnalysisMethod m);
 std::optional<AnalysisMethod> parse_analysis_method(const std::string& s);
 
+// Where light bounced off a surface the camera sees comes from: the
+// radiance the photo shows there (photo), or the recovered albedo times the
+// rendered illumination, iterated to a fixed point (albedo).
+enum class BounceSource { photo, albedo };
+const char* to_string(BounceSource s);
+std::optional<BounceSource> parse_bounce_source(const std::string& s);
+
 struct AnalysisOptions {
   AnalysisMethod method = AnalysisMethod::path;
   Strategy strategy = Strategy::combined;
   int paths_per_pixel = 64;
-  int gbuffer_samples = 9;   // sub-pixel samples per pixel (anti-aliasing)
+  int gbuffer_samples = 9;  // sub-pixel samples per pixel (anti-aliasing)
   uint64_t seed = 1;
-  int max_bounces = 4;
+  int max_bounces = IntegratorOptions::kMaxBounces;
   bool interreflection = true;
-  bool denoise = true;         // filter the environment + interreflection part of each render
-  int max_iterations = 4;      // interreflection re-renders at most
-  float tolerance = 0.005f;    // stop when the mean albedo change is below this
+  BounceSource bounce_source = BounceSource::photo;  // with interreflection on, --method path
+  bool denoise = true;                               // filter the environment + interreflection part of each render
+  int max_iterations = 4;                            // interreflection re-renders at most
+  float tolerance = 0.005f;                          // stop when the mean albedo change is below this
   // With method radiosity, per node (paths_per_pixel is the path tracer's):
-  int node_samples = 64;       // for the light from the lights and the environment
-  int gather_rays = 256;       // for the light from the other surfaces
+  int node_samples = 64;  // for the light from the lights and the environment
+  int gather_rays = 256;  // for the light from the other surfaces
   // With method radiosity: the lights' direct light traced per pixel
   // (paths_per_pixel samples) rather than interpolated from the nodes.
   bool direct_per_pixel = true;
@@ -55,8 +63,12 @@ struct Analysis {
   AnalysisOptions options;
   IlluminationImages illumination;  // of the last iteration
   AlbedoImages albedo;
-  std::vector<float> coverage;      // the mask
-  int iterations = 0;               // renders done
+  std::vector<float> coverage;  // the mask
+  int iterations = 0;           // renders done
+  // How far albedo x the illumination rendered back with it (on every
+  // surface) is from the photo: sum |difference| / sum photo, over blocks of
+  // 8 x 8 pixels that see only geometry.
+  float residual = 0.0f;
 };
 
 // Renders what the scene's camera sees (the G-buffer) with the options' seed

@@ -34,7 +34,7 @@ namespace relight {
 struct FitOptions {
   int paths_per_pixel = 32;
   uint64_t seed = 1;
-  int max_bounces = 4;
+  int max_bounces = IntegratorOptions::kMaxBounces;
   int rounds = 3;
   bool refine_placement = false;
   PlacementOptions placement;

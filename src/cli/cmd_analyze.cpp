@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 
 void add_analyze_command(CLI::App& app, Action& action) {
   struct Args {
-    std::string scene, out, strategy, interreflection = "on", method = "path", direct_light = "pixels";
+    std::string scene, out, strategy, interreflection = "on", method = "path", direct_light = "pixels",
+                                      bounce_source = "photo";
     bool save_renders = false;
     AnalysisOptions options;
   };
@@ -51,19 +52,24 @@ void add_analyze_command(CLI::App& app, Action& action) {
                   "on: iterate the albedo with coloured interreflection; off: white diffuse surfaces (the thesis)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  cmd->add_option("--bounce-source", args->bounce_source,
+                  "with interreflection, --method path: light bounced off a surface the photo shows is the radiance "
+                  "the photo shows there (photo), or the albedo times its rendered light, iterated (albedo)")
+      ->check(CLI::IsMember({"photo", "albedo"}))
+      ->capture_default_str();
   cmd->add_flag("--save-renders", args->save_renders,
                 "also write the albedo each render recovered, albedo_render1.exr (white surfaces), "
                 "albedo_render2.exr, ... (to follow the interreflection iteration)");
   add_sampling_options(*cmd, args->options);
-  cmd->footer(help_footer(
-      "Simulates the light the photo was taken under (from the scene's lights, probes and background) and\n"
-      "  divides the photo by it, leaving the albedo. The folder is reused by 'relight render --analysis'.",
-      {{"relight analyze examples/room/scene.json -o out/room",
-        "writes out/room/{illumination.exr, albedo.exr, albedo.png, mask.exr, analysis.json}"},
-       {"relight analyze scene.json -o analysis --strategy probe --spp 256",
-        "simulate the light from the probes only, with less noise"},
-       {"relight analyze scene.json -o analysis --method radiosity",
-        "simulate it by radiosity on a mesh refined along the photo's shadows (the thesis's method)"}}));
+  cmd->footer(
+      help_footer("Simulates the light the photo was taken under (from the scene's lights, probes and background) and\n"
+                  "  divides the photo by it, leaving the albedo. The folder is reused by 'relight render --analysis'.",
+                  {{"relight analyze examples/room/scene.json -o out/room",
+                    "writes out/room/{illumination.exr, albedo.exr, albedo.png, mask.exr, analysis.json}"},
+                   {"relight analyze scene.json -o analysis --strategy probe --spp 256",
+                    "simulate the light from the probes only, with less noise"},
+                   {"relight analyze scene.json -o analysis --method radiosity",
+                    "simulate it by radiosity on a mesh refined along the photo's shadows (the thesis's method)"}}));
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
       const auto start = std::chrono::steady_clock::now();
@@ -72,6 +78,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
       options.strategy = args->strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args->strategy);
       options.interreflection = args->interreflection == "on";
       options.method = *parse_analysis_method(args->method);
+      options.bounce_source = *parse_bounce_source(args->bounce_source);
       options.direct_per_pixel = args->direct_light == "pixels";
       std::vector<Image> renders;  // albedo_coverage of each render, with --save-renders
       const auto keep = [&](int, const AlbedoImages& albedo) { renders.push_back(albedo.albedo_coverage); };
@@ -85,8 +92,9 @@ void add_analyze_command(CLI::App& app, Action& action) {
                                        ? std::to_string(options.paths_per_pixel) + " spp"
                                        : "radiosity, " + std::to_string(options.node_samples) + " samples and " +
                                              std::to_string(options.gather_rays) + " rays per node";
-      std::printf("analysis (%s, %s, %d render%s) written to %s in %.1f s\n", to_string(options.strategy),
-                  sampling.c_str(), analysis.iterations, analysis.iterations > 1 ? "s" : "", args->out.c_str(), secs);
+      std::printf("analysis (%s, %s, %d render%s, residual %.1f %%) written to %s in %.1f s\n",
+                  to_string(options.strategy), sampling.c_str(), analysis.iterations,
+                  analysis.iterations > 1 ? "s" : "", 100.0 * analysis.residual, args->out.c_str(), secs);
     };
   });
 }

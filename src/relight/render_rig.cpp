@@ -9,8 +9,8 @@ RelitLayers photo_layers(const Scene& scene, const Analysis& analysis) {
   RelitLayers layers{analysis.albedo.albedo_coverage, Image(scene.photo.width, scene.photo.height)};
   for (size_t i = 0; i < layers.background.size(); ++i) {
     const float c = analysis.coverage[i];
-    layers.background.pixels[i] = c > 0.0f ? Vec3((1.0f - c) * analysis.illumination.background.pixels[i])
-                                           : scene.photo.pixels[i];
+    layers.background.pixels[i] =
+        c > 0.0f ? Vec3((1.0f - c) * analysis.illumination.background.pixels[i]) : scene.photo.pixels[i];
   }
   return layers;
 }
@@ -30,7 +30,8 @@ NewIllumination::NewIllumination(const Scene& scene, const RayScene& rays, const
     : rays_(rays),
       analysis_(analysis),
       environment_(strategy_environment(scene, rays, analysis.options.strategy)),
-      bounce_albedo_(scene.camera, gbuffer, analysis.albedo.albedo, analysis.albedo.mean) {}
+      bounce_albedo_(scene.camera, gbuffer, analysis.albedo.albedo, analysis.albedo.mean,
+                     analysis.albedo.unseen_triangles) {}
 
 Lighting NewIllumination::rig_lighting(const Rig& rig) const {
   Lighting lighting;
@@ -41,8 +42,8 @@ Lighting NewIllumination::rig_lighting(const Rig& rig) const {
 }
 
 IlluminationImages NewIllumination::render(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
-                                           const RenderOptions& options, Progress& progress,
-                                           const std::string& label, bool first_surface_lights) const {
+                                           const RenderOptions& options, Progress& progress, const std::string& label,
+                                           bool first_surface_lights) const {
   IntegratorOptions integrator_options;
   integrator_options.max_bounces = options.max_bounces;
   integrator_options.first_surface_lights = first_surface_lights;

@@ -13,7 +13,7 @@ namespace relight {
 
 struct RenderOptions {
   int paths_per_pixel = 64;
-  int max_bounces = 4;
+  int max_bounces = IntegratorOptions::kMaxBounces;
 };
 
 // The analysis's layers of a re-lit image, at the photo's size or a view's:

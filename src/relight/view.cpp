@@ -30,7 +30,8 @@ std::optional<Vec3> bilinear(const Image& image, const Vec2& pos) {
 RelitLayers resampled_layers(const Scene& scene, const GBuffer& photo_gbuffer, const Analysis& analysis,
                              const Environment& environment, const Camera& camera, const GBuffer& gbuffer) {
   const int w = gbuffer.width(), h = gbuffer.height(), spp = gbuffer.samples_per_pixel();
-  const PhotoAlbedo albedo(scene.camera, photo_gbuffer, analysis.albedo.albedo, analysis.albedo.mean);
+  const PhotoAlbedo albedo(scene.camera, photo_gbuffer, analysis.albedo.albedo, analysis.albedo.mean,
+                           analysis.albedo.unseen_triangles);
   const ProbeEnvironment* probe = environment.probe_for(camera.position());
   RelitLayers layers{Image(w, h), Image(w, h)};
   tbb::parallel_for(0, h, [&](int y) {
@@ -75,8 +76,8 @@ RelightView::RelightView(const Scene& scene, const RayScene& rays, const GBuffer
     layers_ = photo_layers(scene, analysis);
   } else {
     camera_ = Camera(scene.camera.spec(), width, height);
-    owned_gbuffer_ = std::make_unique<GBuffer>(camera_, rays, photo_gbuffer.samples_per_pixel(),
-                                               analysis.options.seed, scene.path.string());
+    owned_gbuffer_ = std::make_unique<GBuffer>(camera_, rays, photo_gbuffer.samples_per_pixel(), analysis.options.seed,
+                                               scene.path.string());
     gbuffer_ = owned_gbuffer_.get();
     layers_ = resampled_layers(scene, photo_gbuffer, analysis, environment, camera_, *gbuffer_);
   }

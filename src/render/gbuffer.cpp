@@ -32,16 +32,43 @@ GBuffer::GBuffer(const Camera& camera, const RayScene& scene, int samples_per_pi
   });
   bool any = false;
   for (float c : coverage_) any |= c > 0.0f;
-  if (!any) throw InputError(scene_file, "/camera", "the camera sees no geometry: check position, look_at and the mesh");
+  if (!any)
+    throw InputError(scene_file, "/camera", "the camera sees no geometry: check position, look_at and the mesh");
+}
+
+bool on_same_surface(const SurfacePoint& a, const SurfacePoint& b) {
+  if (a.prim == b.prim) return true;
+  return a.geometric_normal.dot(b.geometric_normal) > 0.9f && std::abs(a.distance - b.distance) < 0.03f * a.distance;
 }
 
 bool GBuffer::same_surface(int x, int y, int nx, int ny) const {
   const GBufferSample& a = central(x, y);
   const GBufferSample& b = central(nx, ny);
-  if (!a.hit || !b.hit) return false;
-  if (a.surface.prim == b.surface.prim) return true;
-  return a.surface.geometric_normal.dot(b.surface.geometric_normal) > 0.9f &&
-         std::abs(a.surface.distance - b.surface.distance) < 0.03f * a.surface.distance;
+  return a.hit && b.hit && on_same_surface(a.surface, b.surface);
+}
+
+bool GBuffer::one_surface(int x, int y) const {
+  const GBufferSample& c = central(x, y);
+  if (!c.hit) return false;
+  for (int k = 0; k < spp_; ++k) {
+    const GBufferSample& s = sample(x, y, k);
+    if (!s.hit || !on_same_surface(c.surface, s.surface)) return false;
+  }
+  return true;
+}
+
+std::optional<GBuffer::Pixel> GBuffer::pixel_showing(const Camera& camera, const SurfacePoint& p) const {
+  const Vec3 to_camera = camera.position() - p.position;
+  if (to_camera.dot(p.geometric_normal) <= 0.0f) return std::nullopt;  // reached from the side the camera is not on
+  const auto pos = camera.project(p.position);
+  if (!pos) return std::nullopt;
+  const int x = int(std::floor(pos->x())), y = int(std::floor(pos->y()));
+  if (x < 0 || y < 0 || x >= width_ || y >= height_) return std::nullopt;
+  const GBufferSample& s = central(x, y);
+  if (!s.hit) return std::nullopt;
+  const float dist = to_camera.norm();
+  if (s.surface.prim != p.prim && std::abs(s.surface.distance - dist) > 0.01f * dist) return std::nullopt;
+  return Pixel{x, y};
 }
 
 Vec2 GBuffer::sample_position(int x, int y, int k) const {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "render/ray_scene.h"
@@ -15,6 +16,11 @@ struct GBufferSample {
   SurfacePoint surface;  // valid when hit
   bool hit = false;
 };
+
+// Whether two points seen from one viewpoint are on the same surface: the
+// same triangle, or a similar normal (within ~25 degrees) at a similar
+// distance (within 3 %).
+bool on_same_surface(const SurfacePoint& a, const SurfacePoint& b);
 
 class GBuffer {
  public:
@@ -38,6 +44,19 @@ class GBuffer {
   // Whether two pixels see the same surface: the same triangle, or a similar
   // normal (within ~25 degrees) at a similar depth (within 3 %).
   bool same_surface(int x, int y, int nx, int ny) const;
+  // Whether every sample of the pixel sees the surface its centre-most
+  // sample sees (no silhouette, crease or background within it).
+  bool one_surface(int x, int y) const;
+
+  struct Pixel {
+    int x, y;
+  };
+  // The pixel that shows p, a point reached by a ray from elsewhere (its
+  // normals turned towards that ray): p projects into the pixel, the camera
+  // is on the side p was reached from, and the pixel's centre-most sample is
+  // on p's triangle or at p's distance (within 1 %: not hidden behind
+  // something nearer). `camera` is the one the G-buffer was made with.
+  std::optional<Pixel> pixel_showing(const Camera& camera, const SurfacePoint& p) const;
 
  private:
   int width_, height_, spp_, grid_, central_;

@@ -6,8 +6,8 @@
 namespace relight {
 
 Integrator::Integrator(const RayScene& scene, const Lighting& lighting, const SurfaceAlbedo* albedo,
-                       IntegratorOptions options)
-    : scene_(scene), lighting_(lighting), albedo_(albedo), options_(options) {
+                       IntegratorOptions options, const KnownRadiance* known)
+    : scene_(scene), lighting_(lighting), albedo_(albedo), options_(options), known_(known) {
   for (const auto& l : lighting_.lights)
     if (l.enabled && !l.emission().isZero()) active_lights_.emplace_back(l);
 }
@@ -76,6 +76,11 @@ void Integrator::illumination(const SurfacePoint& start, Rng& rng, Vec3& direct,
       break;
     }
     if (bounce >= options_.max_bounces) break;
+    if (known_)
+      if (const std::optional<Vec3> radiance = known_->at(next)) {
+        result += throughput.cwiseProduct(*radiance);
+        break;
+      }
     throughput = throughput.cwiseProduct(albedo_ ? albedo_->at(next) : Vec3::Ones());
     if (bounce + 1 >= options_.roulette_after) {
       const float q = std::min(0.95f, throughput.maxCoeff());

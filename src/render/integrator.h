@@ -5,6 +5,7 @@
 // albedo on the surfaces light bounces off.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "core/sampling.h"
@@ -27,6 +28,26 @@ class WhiteAlbedo final : public SurfaceAlbedo {
   Vec3 at(const SurfacePoint&) const override { return Vec3::Ones(); }
 };
 
+// A diffuse albedo the same everywhere (the default for surfaces no photo
+// shows).
+class UniformAlbedo final : public SurfaceAlbedo {
+ public:
+  explicit UniformAlbedo(const Vec3& albedo) : albedo_(albedo) {}
+  Vec3 at(const SurfacePoint&) const override { return albedo_; }
+
+ private:
+  Vec3 albedo_;
+};
+
+// The radiance scene points send out where it is known without rendering
+// (a photo shows it): a path that reaches such a point ends there with it.
+class KnownRadiance {
+ public:
+  virtual ~KnownRadiance() = default;
+  // The radiance p sends back along the ray that reached it, if known.
+  virtual std::optional<Vec3> at(const SurfacePoint& p) const = 0;
+};
+
 // What lights the scene in one render: the lights and the environment.
 struct Lighting {
   std::vector<Light> lights;  // disabled lights are skipped
@@ -37,7 +58,11 @@ struct Lighting {
 };
 
 struct IntegratorOptions {
-  int max_bounces = 4;  // diffuse bounces after the first surface (0: direct light only)
+  // Diffuse bounces after the first surface (0: direct light only). Paths
+  // end by Russian roulette long before the default, a safety bound: a
+  // closed room bounces its light many times, and a cut drops that light.
+  int max_bounces = kMaxBounces;
+  static constexpr int kMaxBounces = 64;
   int roulette_after = 2;  // Russian roulette from this bounce on
   // false: leave out the light reaching the first surface straight from the
   // lights (`direct` stays 0), for renders that add it apart (the
@@ -48,8 +73,10 @@ struct IntegratorOptions {
 class Integrator {
  public:
   // albedo: the albedo of surfaces reached by bounces (nullptr: white).
+  // known: where given, a bounce that reaches a point of known radiance
+  // ends there with it instead of going on with the albedo.
   Integrator(const RayScene& scene, const Lighting& lighting, const SurfaceAlbedo* albedo,
-             IntegratorOptions options = {});
+             IntegratorOptions options = {}, const KnownRadiance* known = nullptr);
 
   // The radiance a white Lambertian surface at p would reflect: the
   // irradiance at p divided by pi. One random path; average many.
@@ -75,6 +102,7 @@ class Integrator {
   const Lighting& lighting_;
   const SurfaceAlbedo* albedo_;
   IntegratorOptions options_;
+  const KnownRadiance* known_;
   std::vector<LightSampler> active_lights_;
 };
 

@@ -29,10 +29,10 @@
 namespace relight {
 
 struct RadiosityOptions {
-  int light_samples = 64;  // per node: the lights and the environment
-  int gather_rays = 256;   // per node: the light from the other surfaces
-  int max_bounces = 4;     // as the path tracer's: diffuse bounces after the first surface
-  float tolerance = 1e-3f; // stop bouncing when no node changes by more than this (relative)
+  int light_samples = 64;                            // per node: the lights and the environment
+  int gather_rays = 256;                             // per node: the light from the other surfaces
+  int max_bounces = IntegratorOptions::kMaxBounces;  // as the path tracer's: diffuse bounces after the first surface
+  float tolerance = 1e-3f;                           // stop bouncing when no node changes by more than this (relative)
   uint64_t seed = 1;
 };
 
@@ -85,8 +85,8 @@ class NodeMesh {
   std::vector<uint32_t> sources_;
   Sides sides_;
   std::vector<Node> nodes_;
-  std::vector<std::vector<uint32_t>> vertex_nodes_;       // the nodes of each vertex
-  std::vector<std::array<uint32_t, 6>> corner_nodes_;     // per triangle: front corners, then back
+  std::vector<std::vector<uint32_t>> vertex_nodes_;    // the nodes of each vertex
+  std::vector<std::array<uint32_t, 6>> corner_nodes_;  // per triangle: front corners, then back
 };
 
 // The rays each node of one mesh casts into the scene (a NodeMesh over the
