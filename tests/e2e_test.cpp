@@ -9,8 +9,8 @@
 
 #include "io/image_io.h"
 #include "io/scene_io.h"
-#include "relight/render_rig.h"
 #include "reference_scenes.h"
+#include "relight/render_rig.h"
 
 namespace fs = std::filesystem;
 using namespace relight;
@@ -27,6 +27,20 @@ double albedo_psnr(const Image& albedo, const fs::path& folder) {
 // Re-lit PSNR: x/(1+x) tone-mapped, sRGB-encoded, all pixels.
 double relit_psnr(const Image& image, const fs::path& reference) {
   return psnr(tonemap_reinhard_srgb(image), tonemap_reinhard_srgb(read_image(reference)));
+}
+
+// What the test asserts per scene (dB). The studio (a closed room, most of
+// its light bounced five to eight times) measured at 32 spp albedo 35.9,
+// rig `same` 45.1 (its noise floor, relit/same.exr against photo.exr: 47.4),
+// `key_fill` 41.2 and `night` 43.8 (docs/benchmarks.md, "Bounce light from
+// the photo and the probes"); asserted with a margin for the noise of other
+// seeds. The earlier analysis (4 bounces, iterated albedo) gave it 27.2.
+struct Targets {
+  double albedo, same, other_rigs;
+};
+Targets targets_for(const std::string& scene) {
+  if (scene == "studio") return {34.5, 43.5, 39.5};
+  return {30.0, 40.0, 30.0};
 }
 
 // The reference scene of the test's parameter, analysed.
@@ -52,7 +66,8 @@ class ReferenceScene : public testing::TestWithParam<std::string> {
 };
 
 TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
-  if (!present()) GTEST_SKIP() << "reference scene " << folder() << " not found (set RELIGHT_SCENES to the scenes folder)";
+  if (!present())
+    GTEST_SKIP() << "reference scene " << folder() << " not found (set RELIGHT_SCENES to the scenes folder)";
   AnalysisOptions analysis_options;
   analysis_options.paths_per_pixel = 32;
   analyse(analysis_options);
@@ -60,9 +75,14 @@ TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
   const fs::path folder = this->folder();
 
   const double albedo = albedo_psnr(analysis.albedo.albedo_coverage, folder);
-  std::printf("[ figures  ] %s albedo PSNR %.2f dB (%s, %d spp, %d renders)\n", GetParam().c_str(), albedo,
-              to_string(options.strategy), options.paths_per_pixel, analysis.iterations);
-  EXPECT_GE(albedo, 30.0);
+  std::printf("[ figures  ] %s albedo PSNR %.2f dB (%s, %d spp, %d renders, residual %.1f %%)\n", GetParam().c_str(),
+              albedo, to_string(options.strategy), options.paths_per_pixel, analysis.iterations,
+              100.0 * analysis.residual);
+  const Targets targets = targets_for(GetParam());
+  EXPECT_GE(albedo, targets.albedo);
+  // The analysis explains the photo: albedo x illumination rendered back
+  // is within 5 % of it (where the analysis warns).
+  EXPECT_LT(analysis.residual, 0.05f);
 
   int rigs = 0;
   for (const auto& entry : fs::directory_iterator(folder / "rigs")) {
@@ -73,18 +93,23 @@ TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
     const Image relit = render_rig(scene, *rays, *gbuffer, analysis, rig, render_options, Progress::silent());
     const double db = relit_psnr(relit, folder / "relit" / (name + ".exr"));
     std::printf("[ figures  ] %s rig %s re-lit PSNR %.2f dB\n", GetParam().c_str(), name.c_str(), db);
-    EXPECT_GE(db, name == "same" ? 40.0 : 30.0) << "rig " << name;
+    EXPECT_GE(db, name == "same" ? targets.same : targets.other_rigs) << "rig " << name;
     ++rigs;
   }
   EXPECT_GT(rigs, 0);
 }
 
+INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceScene, testing::Values("outdoor", "bookcase", "studio"));
+
 // --method radiosity at its defaults (the lights' direct light per pixel at
 // the fewest paths, 9: one per G-buffer sample). Measured 33.1 dB (outdoor)
 // and 27.6 dB (bookcase); seeds 1-3 varied by 0.1 dB. docs/benchmarks.md "Radiosity against path
 // tracing"; asserted with a margin for the noise of other seeds.
-TEST_P(ReferenceScene, RadiosityAlbedo) {
-  if (!present()) GTEST_SKIP() << "reference scene " << folder() << " not found (set RELIGHT_SCENES to the scenes folder)";
+class ReferenceSceneRadiosity : public ReferenceScene {};
+
+TEST_P(ReferenceSceneRadiosity, RadiosityAlbedo) {
+  if (!present())
+    GTEST_SKIP() << "reference scene " << folder() << " not found (set RELIGHT_SCENES to the scenes folder)";
   AnalysisOptions options;
   options.method = AnalysisMethod::radiosity;
   options.paths_per_pixel = 9;
@@ -94,6 +119,6 @@ TEST_P(ReferenceScene, RadiosityAlbedo) {
   EXPECT_GE(albedo, GetParam() == "outdoor" ? 32.2 : 27.2);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceScene, testing::Values("outdoor", "bookcase"));
+INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceSceneRadiosity, testing::Values("outdoor", "bookcase"));
 
 }  // namespace

@@ -1,10 +1,13 @@
 // Analysis: works out the light the photo was taken under and removes it.
-// Renders the initial illumination (white diffuse surfaces, thesis chapter 3)
-// under a strategy — by path tracing or by radiosity on the mesh refined
-// for the photo (analysis/radiosity_illumination.h) — divides the photo by
-// it, and — with interreflection on —
-// re-renders with the recovered albedo on the surfaces light bounces off until
-// the albedo settles (thesis 3.7's "iterative approach").
+// Renders the initial illumination under a strategy — by path tracing or by
+// radiosity on the mesh refined for the photo
+// (analysis/radiosity_illumination.h) — and divides the photo by it. With
+// interreflection on, light bounced off what the photo or a probe shows is
+// the radiance shown there (analysis/photo_radiance.h; with the path tracer
+// and BounceSource::photo), so only surfaces neither shows need an albedo;
+// or (BounceSource::albedo) it re-renders with the recovered albedo until it
+// settles (thesis 3.7's "iterative approach"). Either way the residual says
+// how well albedo x illumination rendered back gives the photo.
 #pragma once
 
 #include <filesystem>
