@@ -44,10 +44,10 @@ struct AnalysisOptions {
   uint64_t seed = 1;
   int max_bounces = IntegratorOptions::kMaxBounces;
   bool interreflection = true;
-  BounceSource bounce_source = BounceSource::photo;  // with interreflection on, --method path
-  bool denoise = true;                               // filter the environment + interreflection part of each render
-  int max_iterations = 4;                            // interreflection re-renders at most
-  float tolerance = 0.005f;                          // stop when the mean albedo change is below this
+  BounceSource bounce_source = BounceSource::albedo;  // with interreflection on, --method path
+  bool denoise = true;                                // filter the environment + interreflection part of each render
+  int max_iterations = 4;                             // interreflection re-renders at most
+  float tolerance = 0.005f;                           // stop when the mean albedo change is below this
   // With method radiosity, per node (paths_per_pixel is the path tracer's):
   int node_samples = 64;  // for the light from the lights and the environment
   int gather_rays = 256;  // for the light from the other surfaces

@@ -48,7 +48,8 @@ Vec3 Integrator::from_environment(const SurfacePoint& p, const ProbeEnvironment*
   return sum;
 }
 
-void Integrator::illumination(const SurfacePoint& start, Rng& rng, Vec3& direct, Vec3& indirect) const {
+void Integrator::illumination(const SurfacePoint& start, Rng& rng, Vec3& direct, Vec3& indirect,
+                              const Vec2* first_bounce) const {
   const Environment& env = lighting_.environment;
   direct = options_.first_surface_lights ? from_lights(start, rng) : Vec3::Zero();
   Vec3& result = indirect;
@@ -65,7 +66,8 @@ void Integrator::illumination(const SurfacePoint& start, Rng& rng, Vec3& direct,
     if (bounce >= options_.max_bounces && env.is_black()) break;
     // Continue the path by a cosine-weighted bounce; its estimator weight
     // (albedo x cos/pi / pdf) is just the albedo.
-    const Vec3 d = to_world(sample_cosine_hemisphere(rng.uniform2()), p.normal);
+    const Vec2 u = bounce == 0 && first_bounce ? *first_bounce : rng.uniform2();
+    const Vec3 d = to_world(sample_cosine_hemisphere(u), p.normal);
     if (d.dot(p.geometric_normal) <= 0.0f) break;
     SurfacePoint next;
     if (!scene_.intersect(scene_.offset_origin(p, d), d, next)) {

@@ -83,7 +83,11 @@ class Integrator {
   // `direct` gets the part from the lights straight to p (sharp shadows,
   // little noise), `indirect` the environment and all interreflection (smooth,
   // noisy: the part worth denoising).
-  void illumination(const SurfacePoint& p, Rng& rng, Vec3& direct, Vec3& indirect) const;
+  // first_bounce, where given, is the 2D sample of the first bounce's
+  // direction (a pixel's paths stratify it: less noise than independent
+  // ones where the light arriving varies a lot across the hemisphere).
+  void illumination(const SurfacePoint& p, Rng& rng, Vec3& direct, Vec3& indirect,
+                    const Vec2* first_bounce = nullptr) const;
   Vec3 illumination(const SurfacePoint& p, Rng& rng) const {
     Vec3 d, i;
     illumination(p, rng, d, i);

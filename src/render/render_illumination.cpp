@@ -13,9 +13,8 @@ struct PixelSums {
 
 // Traces paths_per_pixel paths per pixel. With seen_albedo, every camera
 // sample is weighted by the albedo of the surface it sees (a photo).
-PixelSums trace_pixels(const GBuffer& gbuffer, const Integrator& integrator,
-                       const SurfaceAlbedo* seen_albedo, int paths_per_pixel, uint64_t seed, Progress& progress,
-                       const std::string& label) {
+PixelSums trace_pixels(const GBuffer& gbuffer, const Integrator& integrator, const SurfaceAlbedo* seen_albedo,
+                       int paths_per_pixel, uint64_t seed, Progress& progress, const std::string& label) {
   const int w = gbuffer.width(), h = gbuffer.height(), spp = gbuffer.samples_per_pixel();
   const int paths = std::max(paths_per_pixel, spp);
   PixelSums r{Image(w, h), Image(w, h), std::vector<float>(size_t(w) * h, 0.0f),
@@ -27,12 +26,16 @@ PixelSums trace_pixels(const GBuffer& gbuffer, const Integrator& integrator,
       Vec3 direct_sum = Vec3::Zero(), indirect_sum = Vec3::Zero();
       double lum_sum = 0.0, lum_sq_sum = 0.0, direct_lum_sum = 0.0, direct_lum_sq_sum = 0.0;
       int surface_n = 0;
+      // The first bounces of the pixel's paths: a randomly shifted
+      // Hammersley set, spread over the hemisphere evenly.
+      const Vec2 shift = rng.uniform2();
       for (int i = 0; i < paths; ++i) {
         const int k = i % spp;
         const GBufferSample& s = gbuffer.sample(x, y, k);
         if (s.hit) {
           Vec3 d, ind;
-          integrator.illumination(s.surface, rng, d, ind);
+          const Vec2 first_bounce = shifted(hammersley(i, paths), shift);
+          integrator.illumination(s.surface, rng, d, ind, &first_bounce);
           if (seen_albedo) {
             const Vec3 a = seen_albedo->at(s.surface);
             d = d.cwiseProduct(a);
@@ -96,8 +99,7 @@ Image render_background(const GBuffer& gbuffer, const Camera& camera, const Inte
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                                        const IlluminationOptions& options, Progress& progress,
                                        const std::string& label) {
-  PixelSums r = trace_pixels(gbuffer, integrator, nullptr, options.paths_per_pixel, options.seed, progress,
-                             label);
+  PixelSums r = trace_pixels(gbuffer, integrator, nullptr, options.paths_per_pixel, options.seed, progress, label);
   if (options.denoise) {
     DenoiseOptions indirect_options;
     indirect_options.progress = &progress;
