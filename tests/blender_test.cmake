@@ -24,3 +24,12 @@ run("${RELIGHT}" rig "${WORK}/export/scene.json" -o "${WORK}/rig.json")
 run("${RELIGHT}" analyze "${WORK}/export/scene.json" -o "${WORK}/analysis" --spp 16)
 run("${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${SOURCE_DIR}/tests/blender/check_export.py" --
     "${exporter}" "${WORK}/export" "${WORK}/rig.json" "${WORK}/analysis" "${RELIGHT}")
+# From the command line a refused export is exit 2 and one line naming what is wrong.
+execute_process(COMMAND "${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${exporter}" --
+                        "${WORK}/refused" --photo "${WORK}/no-such-photo.exr"
+                RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+string(REGEX MATCHALL "relight_export: [^\n]*" lines "${err}")
+list(LENGTH lines count)
+if(NOT rc EQUAL 2 OR NOT count EQUAL 1 OR NOT err MATCHES "no-such-photo.exr does not exist" OR EXISTS "${WORK}/refused")
+  message(FATAL_ERROR "a missing photo: exit ${rc}, stderr:\n${err}")
+endif()
