@@ -120,7 +120,18 @@ assert (warm.name, warm.hide_render, off.name, off.hide_render) == ("warm", Fals
 near(list(warm.location), [1.0, 2.0, 3.0])
 near([warm.data.energy, warm.data.shadow_soft_size, off.data.energy], [80.0, 0.2, 2.0])
 background.default_value = strength
-print("check_export: a rig's environment_scale, typed colours and switched-off lights imported as written")
+# In a scene modelled in centimetres the rig's metres become 100 units, and the power what lights
+# a surface so many units away as the rig's lamp does at so many metres; exported, the same again.
+bpy.context.scene.unit_settings.scale_length = 0.01
+warm, _ = relight_export.import_rig(outdir + "/typed.json", replace=True)
+near(list(warm.location), [100.0, 200.0, 300.0])
+near([warm.data.energy / 1e4, warm.data.shadow_soft_size], [80.0, 20.0])
+again = relight_export.light_entry(warm, relight_export.metres_per_unit(bpy.context.scene))
+near(again["position"] + [again["power"], again["radius"]], typed["lights"][0]["position"] + [80.0, 0.2])
+bpy.context.scene.unit_settings.scale_length = 1.0
+background.default_value = strength
+print("check_export: a rig's environment_scale, typed colours, switched-off lights and lengths (in a "
+      "centimetre scene too) imported as written")
 
 
 def refused(why, photo, expected):
