@@ -7,8 +7,9 @@ file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 set(exporter "${SOURCE_DIR}/tools/blender/relight_export.py")
 
+# Run in WORK, so that the relative paths below are relative to it (as a user's would be).
 function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  execute_process(COMMAND ${ARGN} WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
   endif()
@@ -16,10 +17,9 @@ function(run)
 endfunction()
 
 set(blender "${BLENDER}" -b --factory-startup --python-exit-code 1)
-run(${blender} --python "${SOURCE_DIR}/tools/blender/make_example_scene.py" -- "${WORK}/scene.blend" "${WORK}/photo.exr"
-    --render 32)
-run("${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${exporter}" -- "${WORK}/export"
-    --photo "${WORK}/photo.exr")
+run(${blender} --python "${SOURCE_DIR}/tools/blender/make_example_scene.py" -- scene.blend photo.exr --render 32)
+# (Blender itself resolves a relative .blend against $PWD, which WORKING_DIRECTORY does not set.)
+run("${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${exporter}" -- export --photo photo.exr)
 run("${RELIGHT}" rig "${WORK}/export/scene.json" -o "${WORK}/rig.json")
 run("${RELIGHT}" analyze "${WORK}/export/scene.json" -o "${WORK}/analysis" --spp 16)
 run("${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${SOURCE_DIR}/tests/blender/check_export.py" --

@@ -152,6 +152,9 @@ square.save_render(outdir + "/square.exr", scene=bpy.context.scene)
 refused("a square photo for a 320x240 render", outdir + "/square.exr", "not the aspect ratio")
 refused("no photo", None, "no photo")
 refused("a photo that is not there", outdir + "/none.exr", "does not exist")
+bpy.context.scene.render.pixel_aspect_x = 2.0
+refused("non-square pixels", outdir + "/" + scene["photo"], "square pixels")
+bpy.context.scene.render.pixel_aspect_x = 1.0
 for obj in bpy.context.scene.objects:
     obj.hide_render = obj.type == 'MESH'
 refused("no mesh rendered", outdir + "/" + scene["photo"], "no visible mesh")

@@ -67,8 +67,10 @@ def camera_block(scene, metres=1.0):
     if data.type != 'PERSP':
         raise BridgeError("the active camera '%s' is not a perspective camera" % cam.name)
     render = scene.render
-    width = render.resolution_x * render.pixel_aspect_x
-    height = render.resolution_y * render.pixel_aspect_y
+    if abs(render.pixel_aspect_x - render.pixel_aspect_y) > 1e-6 * render.pixel_aspect_x:
+        raise BridgeError("the render's pixel aspect is %g:%g; relight's photos have square pixels"
+                          % (render.pixel_aspect_x, render.pixel_aspect_y))
+    width, height = render.resolution_x, render.resolution_y
     # Blender's sensor fit: the sensor spans the width (horizontal) or the height (vertical);
     # AUTO fits the longer side with sensor_width.
     fit = data.sensor_fit
