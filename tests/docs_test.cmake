@@ -5,9 +5,11 @@
 # - every option `relight --help` and `relight CMD --help` list is in
 #   docs/commands.md: a command's options in its own section ("## relight CMD"),
 #   the options of every command in the page's opening part, before the first
-#   section.
+#   section;
+# - every option `relight-studio --help` lists is in docs/studio.md (where
+#   STUDIO is given).
 # It fails with the list of what is missing.
-#   cmake -DRELIGHT=... -DSOURCE_DIR=... -P docs_test.cmake
+#   cmake -DRELIGHT=... [-DSTUDIO=...] -DSOURCE_DIR=... -P docs_test.cmake
 set(missing "")
 
 # ---- keys
@@ -48,13 +50,14 @@ function(listed_options help out)
   string(REPLACE "\n" ";" lines "${help}")
   set(options "")
   foreach(line IN LISTS lines)
-    if(line MATCHES "^  (-[A-Za-z0-9],)?(--[a-z0-9][a-z0-9-]*)")
-      if(NOT CMAKE_MATCH_2 STREQUAL "--help")
-        string(REPLACE "," "" short "${CMAKE_MATCH_1}")
-        if(short)
-          string(PREPEND short "/")
-        endif()
-        list(APPEND options "${CMAKE_MATCH_2}${short}")
+    if(line MATCHES "^  (-[A-Za-z0-9], ?)?(--[a-z0-9][a-z0-9-]*)")
+      set(long "${CMAKE_MATCH_2}")
+      string(REGEX REPLACE "[, ]" "" short "${CMAKE_MATCH_1}")
+      if(short)
+        string(PREPEND short "/")
+      endif()
+      if(NOT long STREQUAL "--help")
+        list(APPEND options "${long}${short}")
       endif()
     endif()
   endforeach()
@@ -115,6 +118,21 @@ foreach(name IN LISTS names)
     endif()
   endforeach()
 endforeach()
+
+if(STUDIO)
+  file(READ "${SOURCE_DIR}/docs/studio.md" studio_page)
+  execute_process(COMMAND "${STUDIO}" --help OUTPUT_VARIABLE help RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "relight-studio --help: exit ${rc}")
+  endif()
+  listed_options("${help}" options)
+  foreach(option IN LISTS options)
+    documented("${option}" "${studio_page}" ok)
+    if(NOT ok)
+      list(APPEND missing "docs/studio.md: relight-studio's ${option}")
+    endif()
+  endforeach()
+endif()
 
 if(missing)
   list(JOIN missing "\n  " lines)
