@@ -8,7 +8,8 @@
 # shadow elsewhere than the photo's, and the floor's albedo there is far off.
 #   blender -b --factory-startup --python-exit-code 1 --python light_frames.py -- \
 #       EXPORTER RELIGHT WORKDIR CASE...
-# CASE: hdri, hdri_rotated, sun, spot, area, point, shift, centimetres (the point
+# CASE: hdri, hdri_rotated, sun, spot, area, point, shift, shift_vertical (the
+# sensor fitted to the height), centimetres (the point
 # light's scene modelled in centimetres: Unit Scale 0.01), all (the turned HDRI,
 # the spot, the area and the point light and the shifted lens at once; the
 # scene's own lights rendered over the analysis must then give back the photo).
@@ -141,6 +142,9 @@ def build(case, folder):
     camera.data.lens = 30.0
     if case in ("shift", "all"):
         camera.data.shift_x, camera.data.shift_y = 0.12, -0.08
+    if case == "shift_vertical":  # the sensor fitted to the height: field of view and shift in heights
+        camera.data.sensor_fit, camera.data.sensor_height, camera.data.lens = 'VERTICAL', 24.0, 24.0
+        camera.data.shift_x, camera.data.shift_y = -0.1, 0.12
     scene.collection.objects.link(camera)
     scene.camera = camera
 
@@ -151,7 +155,7 @@ def build(case, folder):
         hdri_world(scene, os.path.join(folder, "sky.exr"), math.radians(70.0))
     else:
         uniform_world(scene, AMBIENT)
-    if case in ("sun", "shift"):
+    if case in ("sun", "shift", "shift_vertical"):
         add_light(scene, 'SUN', (0.0, 0.0, 4.0), 4.0, -TOWARDS_LIGHT, angle=math.radians(2.0))
     if case == "sun":
         bpy.ops.mesh.primitive_cube_add(size=1.0, location=(1.5, -1.0, 1.5))
