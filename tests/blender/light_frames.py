@@ -8,8 +8,9 @@
 # shadow elsewhere than the photo's, and the floor's albedo there is far off.
 #   blender -b --factory-startup --python-exit-code 1 --python light_frames.py -- \
 #       EXPORTER RELIGHT WORKDIR CASE...
-# CASE: hdri, hdri_rotated, sun, spot, area, point, shift, shift_vertical (the
-# sensor fitted to the height), centimetres (the point
+# CASE: hdri (an image made in Blender), hdri_rotated (an EXR file turned by a
+# Mapping node, the world at strength 2), sun, spot, area, point, shift,
+# shift_vertical (the sensor fitted to the height), centimetres (the point
 # light's scene modelled in centimetres: Unit Scale 0.01), all (the turned HDRI,
 # the spot, the area and the point light and the shifted lens at once; the
 # scene's own lights rendered over the analysis must then give back the photo).
@@ -64,15 +65,17 @@ def uniform_world(scene, radiance):
     scene.world = world
 
 
-def patch_sky(rotation_z):
+def patch_sky(rotation_z, strength):
     """An equirect image, dim all over, with one bright disc (radius 5 degrees) where
-    Cycles shows TOWARDS_LIGHT once a Mapping node turns the image by rotation_z."""
+    Cycles shows TOWARDS_LIGHT once a Mapping node turns the image by rotation_z; to be
+    shown at `strength`."""
     w, h = 128, 64
     # Cycles looks direction d up at the texture direction R(rotation_z) d.
     lookup = Euler((0.0, 0.0, rotation_z)).to_matrix() @ TOWARDS_LIGHT
     cos_radius = math.cos(math.radians(5.0))
     solid_angle = 2.0 * math.pi * (1.0 - cos_radius)
-    patch = 4.0 / (solid_angle * TOWARDS_LIGHT.z)  # 4 W/m^2 on the floor
+    patch = 4.0 / (solid_angle * TOWARDS_LIGHT.z) / strength  # 4 W/m^2 on the floor
+    ambient = AMBIENT / strength
     pixels = array.array('f', [0.0]) * (w * h * 4)
     for j in range(h):  # Blender's rows count from the bottom
         elevation = ((j + 0.5) / h - 0.5) * math.pi
@@ -81,26 +84,28 @@ def patch_sky(rotation_z):
             azimuth = (0.5 - (i + 0.5) / w) * 2.0 * math.pi
             d = Vector((math.cos(elevation) * math.cos(azimuth), math.cos(elevation) * math.sin(azimuth),
                         math.sin(elevation)))
-            value = patch if d.dot(lookup) > cos_radius else AMBIENT
+            value = patch if d.dot(lookup) > cos_radius else ambient
             pixels[(j * w + i) * 4:(j * w + i) * 4 + 4] = array.array('f', [value, value, value, 1.0])
     image = bpy.data.images.new("sky", w, h, float_buffer=True)
     image.pixels.foreach_set(pixels)
     return image
 
 
-def hdri_world(scene, path=None, rotation_z=None):
-    """A world lit by patch_sky: the generated image itself, or (with `path`) an EXR file of it."""
+def hdri_world(scene, path=None, rotation_z=None, strength=1.0):
+    """A world lit by patch_sky: the generated image itself, or (with `path`) an EXR file of it,
+    shown at `strength` (the Background node's)."""
     world = bpy.data.worlds.new("World")
     world.use_nodes = True
     tree = world.node_tree
     texture = tree.nodes.new("ShaderNodeTexEnvironment")
-    texture.image = patch_sky(rotation_z or 0.0)
+    texture.image = patch_sky(rotation_z or 0.0, strength)
     if path:
         scene.render.image_settings.file_format, scene.render.image_settings.color_depth = 'OPEN_EXR', '32'
         texture.image.save_render(path, scene=scene)  # linear floats (Image.save() of a generated image is not)
         texture.image = bpy.data.images.load(path)
     texture.interpolation = 'Closest'
     tree.links.new(texture.outputs["Color"], tree.nodes["Background"].inputs["Color"])
+    tree.nodes["Background"].inputs["Strength"].default_value = strength
     if rotation_z is not None:  # as scenegen and most HDRI set-ups turn the sky
         coords = tree.nodes.new("ShaderNodeTexCoord")
         mapping = tree.nodes.new("ShaderNodeMapping")
@@ -151,8 +156,8 @@ def build(case, folder):
     light_at, light_towards = None, TOWARDS_LIGHT
     if case == "hdri":  # the image made in Blender, not saved: the exporter writes it
         hdri_world(scene)
-    elif case in ("hdri_rotated", "all"):  # an EXR file, turned by a Mapping node
-        hdri_world(scene, os.path.join(folder, "sky.exr"), math.radians(70.0))
+    elif case in ("hdri_rotated", "all"):  # an EXR file, turned by a Mapping node, at strength 2
+        hdri_world(scene, os.path.join(folder, "sky.exr"), math.radians(70.0), 2.0)
     else:
         uniform_world(scene, AMBIENT)
     if case in ("sun", "shift", "shift_vertical"):

@@ -24,6 +24,7 @@ bl_info = {
     "location": "File > Export > relight scene; File > Import > relight rig",
 }
 
+import array
 import json
 import math
 import os
@@ -183,6 +184,21 @@ def _write_linear_exr(image, path, scene):
         settings.file_format, settings.color_depth = kept
 
 
+def _write_scaled_exr(image, factor, path, scene):
+    """The image's colour times `factor`, as a 32-bit EXR."""
+    width, height = image.size
+    pixels = array.array('f', [0.0]) * (width * height * 4)
+    image.pixels.foreach_get(pixels)
+    for channel in range(3):  # alpha stays
+        pixels[channel::4] = array.array('f', (value * factor for value in pixels[channel::4]))
+    copy = bpy.data.images.new("relight scaled " + image.name, width, height, float_buffer=True)
+    try:
+        copy.pixels.foreach_set(pixels)
+        _write_linear_exr(copy, path, scene)
+    finally:
+        bpy.data.images.remove(copy)
+
+
 def world_entries(scene, outdir, probe_position):
     """background (constant colour) or probes (an equirect HDRI) for the world."""
     world = scene.world
@@ -200,12 +216,18 @@ def world_entries(scene, outdir, probe_position):
     if texture.projection != 'EQUIRECTANGULAR':
         raise BridgeError("the world's Environment Texture uses %s projection; relight takes equirectangular"
                           % texture.projection)
-    if abs(strength - 1.0) > 1e-6:
-        print("relight_export: warning: the world strength %.3g is not applied to the probe image" % strength)
     forward, up = _environment_frame(texture)
     image = texture.image
     source = bpy.path.abspath(image.filepath)
-    if image.packed_file is None and image.source == 'FILE' and os.path.isfile(source):
+    scaled = abs(strength - 1.0) > 1e-6
+    if scaled and not image.is_float:
+        print("relight_export: warning: the world strength %.3g is not applied to the 8-bit image %s"
+              % (strength, image.name))
+        scaled = False
+    if scaled:  # the probe is the light Cycles renders with: the image times the strength
+        name = "%s_x%g.exr" % (bpy.path.clean_name(os.path.splitext(image.name)[0]), strength)
+        _write_scaled_exr(image, strength, os.path.join(outdir, name), scene)
+    elif image.packed_file is None and image.source == 'FILE' and os.path.isfile(source):
         name = os.path.basename(source)
         target = os.path.join(outdir, name)
         if os.path.abspath(source) != os.path.abspath(target):
