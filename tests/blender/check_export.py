@@ -130,6 +130,18 @@ again = relight_export.light_entry(warm, relight_export.metres_per_unit(bpy.cont
 near(again["position"] + [again["power"], again["radius"]], typed["lights"][0]["position"] + [80.0, 0.2])
 bpy.context.scene.unit_settings.scale_length = 1.0
 background.default_value = strength
+# A rig with a bad entry changes nothing: the good light before it is not added either.
+with open(outdir + "/bad.json", "w") as f:
+    json.dump({"format": "relight-rig/1", "environment_scale": 0.5,
+               "lights": [typed["lights"][0], {"type": "spot", "position": [0, 0, 1], "power": 5}]}, f)
+before = sorted(o.name for o in bpy.context.scene.objects)
+try:
+    relight_export.import_rig(outdir + "/bad.json", replace=True)
+    raise AssertionError("a spot without its cone and direction imported")
+except relight_export.BridgeError as e:
+    assert "/lights/1: the spot light has no" in str(e), e
+assert sorted(o.name for o in bpy.context.scene.objects) == before
+near(background.default_value, strength)
 print("check_export: a rig's environment_scale, typed colours, switched-off lights and lengths (in a "
       "centimetre scene too) imported as written")
 
