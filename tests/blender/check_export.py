@@ -164,6 +164,12 @@ square.save_render(outdir + "/square.exr", scene=bpy.context.scene)
 refused("a square photo for a 320x240 render", outdir + "/square.exr", "not the aspect ratio")
 refused("no photo", None, "no photo")
 refused("a photo that is not there", outdir + "/none.exr", "does not exist")
+tree = bpy.context.scene.world.node_tree
+sky = tree.nodes.new("ShaderNodeTexSky")
+link = tree.links.new(sky.outputs["Color"], tree.nodes["Background"].inputs["Color"])
+refused("a world lit by a Sky Texture", outdir + "/" + scene["photo"], "TEX_SKY")
+tree.links.remove(link)
+tree.nodes.remove(sky)
 bpy.context.scene.render.pixel_aspect_x = 2.0
 refused("non-square pixels", outdir + "/" + scene["photo"], "square pixels")
 bpy.context.scene.render.pixel_aspect_x = 1.0

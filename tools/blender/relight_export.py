@@ -199,8 +199,8 @@ def _write_scaled_exr(image, factor, path, scene):
         bpy.data.images.remove(copy)
 
 
-def world_entries(scene, outdir, probe_position):
-    """background (constant colour) or probes (an equirect HDRI) for the world."""
+def world_entries(scene, folder, probe_position):
+    """background (constant colour) or probes (an equirect HDRI, written into `folder`) for the world."""
     world = scene.world
     node, strength = _world_background(world)
     if node is None:
@@ -226,15 +226,15 @@ def world_entries(scene, outdir, probe_position):
         scaled = False
     if scaled:  # the probe is the light Cycles renders with: the image times the strength
         name = "%s_x%g.exr" % (bpy.path.clean_name(os.path.splitext(image.name)[0]), strength)
-        _write_scaled_exr(image, strength, os.path.join(outdir, name), scene)
+        _write_scaled_exr(image, strength, os.path.join(folder, name), scene)
     elif image.packed_file is None and image.source == 'FILE' and os.path.isfile(source):
         name = os.path.basename(source)
-        target = os.path.join(outdir, name)
+        target = os.path.join(folder, name)
         if os.path.abspath(source) != os.path.abspath(target):
             shutil.copyfile(source, target)
     else:  # packed or generated: write its float pixels
         name = bpy.path.clean_name(os.path.splitext(image.name)[0]) + ".exr"
-        _write_linear_exr(image, os.path.join(outdir, name), scene)
+        _write_linear_exr(image, os.path.join(folder, name), scene)
     return {"probes": [{"image": name, "mapping": "equirect", "position": _vec(probe_position),
                         "forward": _vec(forward), "up": _vec(up)}]}
 
@@ -302,13 +302,6 @@ def export_scene(scene, outdir, photo=None):
     metres = metres_per_unit(scene)
     camera, resolution = camera_block(scene, metres)
     check_photo_size(photo, resolution)
-    with tempfile.TemporaryDirectory() as scratch:  # the geometry is checked before OUTDIR is made
-        write_geometry(os.path.join(scratch, "geometry.obj"), metres)
-        os.makedirs(outdir, exist_ok=True)
-        shutil.move(os.path.join(scratch, "geometry.obj"), os.path.join(outdir, "geometry.obj"))
-    photo_name = os.path.basename(photo)
-    if os.path.abspath(os.path.dirname(photo)) != os.path.abspath(outdir):
-        shutil.copyfile(photo, os.path.join(outdir, photo_name))
     rendered = rendered_objects(scene)
     lights = []
     for obj in scene.objects:
@@ -316,15 +309,26 @@ def export_scene(scene, outdir, photo=None):
             lights.append(light_entry(obj, metres))
             if obj not in rendered:
                 lights[-1]["enabled"] = False
+    photo_name = os.path.basename(photo)
     doc = {"format": "relight-scene/1", "photo": photo_name, "geometry": "geometry.obj", "camera": camera,
            "lights": lights}
-    doc.update(world_entries(scene, outdir, mathutils.Vector(camera["position"])))
-    # Written beside and renamed over, so a reader never sees half a file.
     target = os.path.join(outdir, "scene.json")
-    with open(target + ".part", "w") as f:
-        json.dump(doc, f, indent=2)
-        f.write("\n")
-    os.replace(target + ".part", target)
+    # Everything is made in a scratch folder first: a scene refused on the way writes nothing.
+    with tempfile.TemporaryDirectory() as scratch:
+        write_geometry(os.path.join(scratch, "geometry.obj"), metres)
+        doc.update(world_entries(scene, scratch, mathutils.Vector(camera["position"])))
+        with open(os.path.join(scratch, "scene.json"), "w") as f:
+            json.dump(doc, f, indent=2)
+            f.write("\n")
+        os.makedirs(outdir, exist_ok=True)
+        if os.path.abspath(os.path.dirname(photo)) != os.path.abspath(outdir):
+            shutil.copyfile(photo, os.path.join(outdir, photo_name))
+        for name in os.listdir(scratch):
+            if name != "scene.json":
+                shutil.move(os.path.join(scratch, name), os.path.join(outdir, name))
+        # scene.json last, renamed over: a reader never sees half a file, nor one whose files are missing.
+        shutil.move(os.path.join(scratch, "scene.json"), target + ".part")
+        os.replace(target + ".part", target)
     print("relight_export: wrote %s (%d lights, %g m per Blender unit)" % (target, len(lights), metres))
     return target
 
