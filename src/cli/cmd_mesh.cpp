@@ -133,9 +133,11 @@ void add_mesh_command(CLI::App& app, Action& action) {
       std::error_code ec;
       fs::create_directories(out, ec);
       if (!fs::is_directory(out)) throw InputError(out.string(), "", "cannot create the output folder");
+      OutputBatch outputs;
       save_obj(out / "mesh.obj", mesh.to_triangle_mesh());
       write_png(out / "mesh.png", draw_edges_over_photo(scene.photo, edges));
       write_text_atomically(out / "mesh.json", j.dump(2) + "\n");
+      outputs.commit();
       std::printf("mesh: %zu triangles in view -> %zu (%zu edges split, %zu vertices moved) in %.3f s, written to %s\n",
                   report.triangles_clipped, mesh.triangles().size(), report.subdivision.edges_split,
                   report.relax.vertices_moved, report.seconds, args->out.c_str());

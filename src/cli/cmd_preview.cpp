@@ -166,6 +166,7 @@ void add_preview_command(CLI::App& app, Action& action) {
         std::snprintf(name, sizeof name, "frame_%04d", i);
         return std::string(name);
       };
+      OutputBatch outputs;
       write_frame(out, frame_name(0), *first.image);
       if (args->frames > 1) write_frame(out, frame_name(args->frames - 1), *last.image);
       write_frame(out, "converged", *converged.image);
@@ -180,6 +181,7 @@ void add_preview_command(CLI::App& app, Action& action) {
       timing["light"] = {{"name", start.name}, {"type", to_string(start.type)}, {"radius_m", radius}};
       timing["lights"] = rig.lights.size();
       write_text_atomically(out / "timing.json", timing.dump(2) + "\n");
+      outputs.commit();
       std::printf("%d frames: median %.1f ms, p95 %.1f ms; converged %.0f ms after the last; written to %s\n",
                   args->frames, double(timing["median_frame_ms"]), double(timing["p95_frame_ms"]), converge_ms,
                   out.c_str());

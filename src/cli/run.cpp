@@ -7,8 +7,10 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/mesh_io.h"
+#include "io/output_guard.h"
 #include "io/scene_io.h"
 
 namespace relight::cli {
@@ -91,6 +93,12 @@ int run(std::span<const std::string> args) {
   add_fit_command(app, action);
   add_mesh_command(app, action);
   add_camera_from_fspy_command(app, action);
+  bool force = false;
+  for (const char* writer : {"analyze", "render", "rig", "preview", "fit", "mesh", "camera-from-fspy"})
+    app.get_subcommand(writer)->add_flag(
+        "--force", force,
+        "replace an output file that is read-only (keeping its mode); analyze: also write into a folder holding "
+        "images of its names but no analysis");
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 wants them reversed, without argv[0]
   try {
@@ -100,6 +108,7 @@ int run(std::span<const std::string> args) {
   }
   set_max_image_pixels(max_pixels);
   set_repair_meshes(repair_mesh);
+  set_force_outputs(force);
   // Warnings go to stderr with the errors; stdout carries only the results.
   static const auto log_to_stderr =
       std::make_shared<spdlog::logger>("relight", std::make_shared<spdlog::sinks::stderr_color_sink_mt>());
@@ -114,6 +123,7 @@ int run(std::span<const std::string> args) {
     ~ForgetProgress() { g_progress = nullptr; }  // a later Ctrl-C must not reach a dead Progress
   } forget_progress;
   try {
+    const OutputGuard no_input_replaced;
     action(progress);
     return 0;
   } catch (const InputError& e) {
