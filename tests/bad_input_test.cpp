@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "reference_scenes.h"
+#include "sanitizer.h"
 #include "scene_folder.h"
 
 namespace {
@@ -25,6 +26,7 @@ using json = nlohmann::json;
 using relight::Image;
 using relight::Vec3;
 using relight::test::kGeometry;
+using relight::test::kAddressSanitizer;
 using relight::test::read_text;
 using relight::test::run_cli;
 using relight::test::SceneFolder;
@@ -428,18 +430,6 @@ TEST(BadInputCatalogue, HoldsAtLeastFortyRejectedInputs) {
   const auto& rows = catalogue();
   EXPECT_GE(std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.status == 2; }), 40);
 }
-
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
 
 // The checks of the catalogue for a bad input run by hand: exit 2, one error
 // line that names `file` and says `problem`.

@@ -3,6 +3,7 @@
 // memory limit instead of taking the machine's, and a cancellation (a
 // Ctrl-C) ends the wait and the child at once.
 #include "io/child_process.h"
+#include "sanitizer.h"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -23,18 +24,7 @@ namespace relight {
 namespace {
 
 namespace fs = std::filesystem;
-
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
+using test::kAddressSanitizer;
 
 ChildLimits seconds(int s) {
   ChildLimits limits;
