@@ -228,6 +228,31 @@ TEST(Cli, PreviewRefusesABadSize) {
   EXPECT_NE(r.err.find("16by12"), std::string::npos) << r.err;
 }
 
+// --size makes the view's images: it is held to --max-pixels as photos are.
+TEST(Cli, PreviewRefusesASizeOverMaxPixels) {
+  relight::test::SceneFolder folder("preview_size_limit");
+  folder.write_json();
+  const auto r =
+      relight::test::run_cli({"preview", (folder / "scene.json").string(), "--rig", (folder / "rig.json").string(),
+                              "--size", "16x12", "--max-pixels", "100", "-o", (folder / "out").string()});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("--size: a view of 16x12 (0.0 Mpixel) is over the limit"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(folder / "out" / "frame_0000.png"));
+}
+
+// PSNR over no pixel is no figure: an all-zero mask is bad input, not "0.00 dB".
+TEST(Cli, CompareRefusesAMaskThatSelectsNoPixel) {
+  const fs::path dir = temp_folder("compare_zero_mask");
+  relight::write_exr(dir / "a.exr", relight::Image(4, 3, relight::Vec3(0.5f, 0.5f, 0.5f)));
+  relight::write_exr(dir / "b.exr", relight::Image(4, 3, relight::Vec3(0.4f, 0.5f, 0.5f)));
+  relight::write_exr(dir / "mask.exr", relight::Image(4, 3, relight::Vec3::Zero()));
+  const auto r = relight::test::run_cli(
+      {"compare", (dir / "a.exr").string(), (dir / "b.exr").string(), "--mask", (dir / "mask.exr").string()});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("mask.exr: the mask selects no pixel"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, MeshWritesTheRefinedMeshItsPictureAndItsCounts) {
   const fs::path dir = temp_folder("mesh");
   testing::internal::CaptureStdout();

@@ -18,10 +18,10 @@ AnalysisOptions gbuffer_options(AnalysisOptions options, const std::string& anal
 
 }  // namespace
 
-AnalysedScene::AnalysedScene(const std::string& scene_path, const std::string& analysis_folder,
-                             AnalysisOptions options, Progress& progress)
-    : analysis(analysis_folder.empty() ? Analysis{} : load_analysis(analysis_folder, load_scene(scene_path))),
-      loaded(load_for_rendering(scene_path, gbuffer_options(options, analysis_folder, analysis))) {
+AnalysedScene::AnalysedScene(const std::string& scene_path, const std::string& analysis_folder, AnalysisOptions options,
+                             Progress& progress)
+    : analysis(analysis_folder.empty() ? Analysis{} : load_analysis(analysis_folder, load_scene(scene_path, progress))),
+      loaded(load_for_rendering(scene_path, gbuffer_options(options, analysis_folder, analysis), progress)) {
   if (analysis_folder.empty()) {
     options.strategy = default_strategy(loaded.scene);
     analysis = analyze(loaded.scene, *loaded.rays, *loaded.gbuffer, options, progress);

@@ -68,7 +68,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
       const auto start = std::chrono::steady_clock::now();
-      LoadedScene s = load_for_rendering(args->scene, args->options);
+      LoadedScene s = load_for_rendering(args->scene, args->options, progress);
       AnalysisOptions options = args->options;
       options.strategy = args->strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args->strategy);
       options.interreflection = args->interreflection == "on";

@@ -37,7 +37,7 @@ void add_fit_command(CLI::App& app, Action& action) {
         "also correct the lights' positions and directions from the shadows"}}));
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
-      LoadedScene s = load_for_rendering(args->scene, args->options);
+      LoadedScene s = load_for_rendering(args->scene, args->options, progress);
       FitOptions options;
       options.paths_per_pixel = args->options.paths_per_pixel;
       options.seed = args->options.seed;

@@ -94,10 +94,10 @@ void add_mesh_command(CLI::App& app, Action& action) {
        {"relight mesh scene.json -o out/mesh --albedo-gt albedo_gt.exr --mask mask.exr",
         "also reports how many shadow-edge pixels lie near a mesh edge"}}));
   cmd->callback([&action, args] {
-    action = [args](Progress&) {
+    action = [args](Progress& progress) {
       args->options.subdivision.criterion = kCriteria.at(args->criterion);
       args->options.relax.flip_test = kFlipTests.at(args->flip_test);
-      const Scene scene = load_scene(args->scene);
+      const Scene scene = load_scene(args->scene, progress);
       const RayScene rays(scene.mesh);
       const GBuffer gbuffer(scene.camera, rays, 1, 1, args->scene);
       const PhotoSamples photo = photo_samples(scene.photo, gbuffer);

@@ -127,6 +127,7 @@ void add_preview_command(CLI::App& app, Action& action) {
           throw InputError("--size", "", "expected WIDTHxHEIGHT, e.g. 1280x720, got '" + args->size + "'");
         options.width = std::stoi(m[1]);
         options.height = std::stoi(m[2]);
+        expect_within_pixel_limit("--size", "a view", options.width, options.height);
       }
       options.final_render.paths_per_pixel = args->options.paths_per_pixel;
       options.final_render.max_bounces = args->options.max_bounces;

@@ -34,7 +34,7 @@ struct LoadedScene {
   std::unique_ptr<RayScene> rays;
   std::unique_ptr<GBuffer> gbuffer;
 };
-LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options);
+LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options, const Progress& progress);
 
 // A scene loaded for rendering with its analysis: read from analysis_folder
 // (whose seed and sub-pixel samples then make the G-buffer) or, where that

@@ -50,14 +50,10 @@ RawImage read_raw(const fs::path& path, const std::function<std::pair<int, int>(
   if (raw.width <= 0 || raw.height <= 0 || raw.spec.nchannels <= 0)
     throw InputError(name, "", fmt::format("the image is empty ({}x{} pixels, {} channels)", raw.width, raw.height,
                                            raw.spec.nchannels));
-  const int64_t pixels = int64_t(raw.width) * raw.height;
-  if (pixels > max_image_pixels())
-    throw InputError(name, "", fmt::format("image of {}x{} ({:.1f} Mpixel) is over the limit of {:.1f} Mpixel "
-                                           "(raise it with --max-pixels or RELIGHT_MAX_PIXELS)",
-                                           raw.width, raw.height, pixels * 1e-6, max_image_pixels() * 1e-6));
+  expect_within_pixel_limit(name, "image", raw.width, raw.height);
   const auto [first, last] = pick_channels(raw.spec);
   raw.channels = last - first;
-  raw.data.resize(size_t(pixels) * raw.channels);
+  raw.data.resize(size_t(raw.width) * raw.height * raw.channels);
   if (!in->read_image(0, 0, first, last, TypeDesc::FLOAT, raw.data.data()))
     throw InputError(name, "", "corrupt or truncated image (" + first_line(in->geterror()) + ")");
   for (size_t i = 0; i < raw.data.size(); ++i) {
@@ -106,6 +102,19 @@ void write_pixels(const fs::path& path, const ImageSpec& spec, const void* data,
 
 int64_t max_image_pixels() { return g_max_pixels.load(); }
 void set_max_image_pixels(int64_t pixels) { g_max_pixels.store(pixels); }
+
+bool is_black(const Image& image) {
+  return std::all_of(image.pixels.begin(), image.pixels.end(), [](const Vec3& p) { return p.isZero(); });
+}
+
+void expect_within_pixel_limit(const std::string& name, const char* what, int64_t width, int64_t height) {
+  const int64_t pixels = width * height;
+  if (pixels > max_image_pixels())
+    throw InputError(name, "",
+                     fmt::format("{} of {}x{} ({:.1f} Mpixel) is over the limit of {:.1f} Mpixel "
+                                 "(raise it with --max-pixels or RELIGHT_MAX_PIXELS)",
+                                 what, width, height, pixels * 1e-6, max_image_pixels() * 1e-6));
+}
 
 Image read_image(const fs::path& path) {
   RawImage raw = read_raw(path, [](const ImageSpec& spec) { return std::pair(0, spec.nchannels >= 3 ? 3 : 1); });

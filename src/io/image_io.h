@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "core/image.h"
@@ -17,6 +18,12 @@ namespace relight {
 inline constexpr int64_t kDefaultMaxImagePixels = 25'000'000;
 int64_t max_image_pixels();
 void set_max_image_pixels(int64_t pixels);
+// Throws InputError naming `name` where width x height is over
+// max_image_pixels(); `what` says what it is ("image", "view").
+void expect_within_pixel_limit(const std::string& name, const char* what, int64_t width, int64_t height);
+
+// Every pixel 0 (a probe that measured no light).
+bool is_black(const Image& image);
 
 // No radiance comes near this (the sun is ~1e9 W/(m^2 sr)); larger values
 // are corrupt data and would overflow float sums in the renderer.
