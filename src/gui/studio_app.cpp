@@ -112,16 +112,15 @@ int run_studio(int argc, char** argv) {
   }
   QApplication app(argc, argv);
   name_application();
-  StudioCommandLine command_line;
-  QCommandLineParser& parser = command_line.parser;
-  const QCommandLineOption &cpu = command_line.cpu, &screenshot = command_line.screenshot, &size = command_line.size,
-                           &split = command_line.split, &repair = command_line.repair;
+  StudioCommandLine options_given;
+  QCommandLineParser& parser = options_given.parser;
   parser.process(app);
   const QString repair_env = qEnvironmentVariable("RELIGHT_REPAIR_MESH");
-  set_repair_meshes(parser.isSet(repair) || (!repair_env.isEmpty() && repair_env != "0"));
+  set_repair_meshes(parser.isSet(options_given.repair) || (!repair_env.isEmpty() && repair_env != "0"));
   const QStringList files = parser.positionalArguments();
-  const QRegularExpressionMatch wxh = QRegularExpression("^(\\d{3,5})x(\\d{3,5})$").match(parser.value(size));
-  if (files.size() > 2 || !wxh.hasMatch() || (parser.isSet(screenshot) && files.isEmpty())) {
+  const QRegularExpressionMatch wxh =
+      QRegularExpression("^(\\d{3,5})x(\\d{3,5})$").match(parser.value(options_given.size));
+  if (files.size() > 2 || !wxh.hasMatch() || (parser.isSet(options_given.screenshot) && files.isEmpty())) {
     std::fprintf(stderr,
                  "relight-studio: usage: relight-studio [--size WxH] [--screenshot FILE.png] "
                  "[SCENE.json [RIG.json]] (--screenshot needs a scene)\n");
@@ -129,11 +128,11 @@ int run_studio(int argc, char** argv) {
   }
 
   StudioOptions options = default_studio_options();
-  if (parser.isSet(cpu)) options.session.backend = Backend::cpu;
+  if (parser.isSet(options_given.cpu)) options.session.backend = Backend::cpu;
   MainWindow window(options);
   window.resize(wxh.captured(1).toInt(), wxh.captured(2).toInt());
-  window.findChild<QSlider*>("split")->setValue(parser.value(split).toInt());
-  if (parser.isSet(screenshot)) screenshot_when_converged(window, parser.value(screenshot));
+  window.findChild<QSlider*>("split")->setValue(parser.value(options_given.split).toInt());
+  if (parser.isSet(options_given.screenshot)) screenshot_when_converged(window, parser.value(options_given.screenshot));
   window.show();
   if (!files.isEmpty()) window.open_scene(files[0], files.size() > 1 ? files[1] : QString());
   return QApplication::exec();
