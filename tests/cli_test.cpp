@@ -4,13 +4,17 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <thread>
 
 #include "cli/commands.h"
 #include "io/image_io.h"
-#include "scene_folder.h"
 #include "io/mesh_io.h"
+#include "scene_folder.h"
 
 namespace fs = std::filesystem;
 
@@ -226,6 +230,55 @@ TEST(Cli, PreviewRefusesABadSize) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("16by12"), std::string::npos) << r.err;
+}
+
+// Whether a process whose parent is this one exists (the mesh reader's child).
+bool has_child_process() {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(entry.path() / "stat");
+    std::string line;
+    std::getline(stat, line);
+    const size_t end_of_name = line.rfind(')');
+    if (end_of_name == std::string::npos) continue;
+    std::istringstream fields(line.substr(end_of_name + 1));
+    std::string state;
+    pid_t parent = 0;
+    if (fields >> state >> parent && parent == ::getpid()) return true;
+  }
+  return false;
+}
+
+// A Ctrl-C while the mesh reader's child reads a 1M-triangle OBJ (seconds of
+// work) ends the command as cancelled, nothing written; before, the read went
+// on and the rig was written.
+TEST(Cli, ACtrlCDuringTheMeshReadCancelsTheCommand) {
+  relight::test::SceneFolder folder("ctrl_c_mesh");
+  std::string obj;
+  const int n = 708;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) obj += "v " + std::to_string(i) + " " + std::to_string(j) + " 0\n";
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i + 1, b = a + 1, c = a + n, d = c + 1;
+      obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\nf " + std::to_string(a) +
+             " " + std::to_string(d) + " " + std::to_string(c) + "\n";
+    }
+  relight::test::write_text(folder / "geometry.obj", obj);
+  folder.write_json();
+  std::atomic<bool> done{false};
+  std::thread interrupt([&done] {
+    while (!done && !has_child_process()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (!done) ::kill(::getpid(), SIGINT);  // relight's handler is installed before any child is started
+  });
+  const auto r =
+      relight::test::run_cli({"rig", (folder / "scene.json").string(), "-o", (folder / "out.json").string()});
+  done = true;
+  interrupt.join();
+  EXPECT_EQ(r.status, 130) << r.err;
+  EXPECT_NE(r.err.find("cancelled; nothing was written"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(folder / "out.json"));
 }
 
 // --size makes the view's images: it is held to --max-pixels as photos are.

@@ -115,8 +115,8 @@ int run(std::span<const std::string> args) {
       ->envname("RELIGHT_REPAIR_MESH");
   bool confine = false;
   app.add_flag("--confine-to-scene-folder", confine,
-               "refuse a scene whose files (photo, geometry, probes, a glTF's buffers, an OBJ's mtllib) lie outside "
-               "the scene.json's folder, instead of warning; for scenes from others")
+               "refuse a scene whose files (photo, geometry, probes, a glTF's buffers and images, an OBJ's mtllib) lie "
+               "outside the scene.json's folder, instead of warning; for scenes from others")
       ->envname("RELIGHT_CONFINE_TO_SCENE_FOLDER");
   app.fallthrough();  // the global options may follow the subcommand
   Action action;
