@@ -25,6 +25,7 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 using relight::Image;
 using relight::Vec3;
+using relight::test::error_lines;
 using relight::test::kGeometry;
 using relight::test::kAddressSanitizer;
 using relight::test::read_text;
@@ -364,14 +365,6 @@ const std::vector<Row>& catalogue() {
 }
 
 // The lines of stderr that are not blank and not warnings.
-std::vector<std::string> error_lines(const std::string& err) {
-  std::vector<std::string> lines;
-  std::istringstream in(err);
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty() && line.rfind("relight: warning:", 0) != 0) lines.push_back(line);
-  return lines;
-}
-
 void PrintTo(const Row& row, std::ostream* out) { *out << row.name; }
 
 class BadInput : public testing::TestWithParam<Row> {};

@@ -39,17 +39,16 @@ std::atomic<bool> g_force{false};
 constexpr int kSlots = 128;
 struct Slot {
   std::atomic<int> state{0};  // 0 free, 1 live
-  pid_t owner = 0;            // a forked child inherits the slots: only the owner removes them
   char path[PATH_MAX] = {};
 };
 Slot g_slots[kSlots];
 std::atomic<int> g_sections{0};  // sections in progress; -1 once a handler is ending the process
 std::atomic<int> g_pending_signal{0};
+pid_t g_owner = 0;  // the process that installed the handler
 
 [[noreturn]] void remove_temporaries_and_die(int sig) {
-  const pid_t self = ::getpid();
   for (Slot& slot : g_slots)
-    if (slot.state.load() == 1 && slot.owner == self) ::unlink(slot.path);
+    if (slot.state.load() == 1) ::unlink(slot.path);
   ::signal(sig, SIG_DFL);
   ::raise(sig);  // in a handler the signal is blocked: it ends the process as the handler returns
   sigset_t set;
@@ -60,6 +59,11 @@ std::atomic<int> g_pending_signal{0};
 }
 
 void on_signal(int sig) {
+  if (::getpid() != g_owner) {  // a forked child (the mesh reader): its parent's temporaries are not its own
+    ::signal(sig, SIG_DFL);
+    ::raise(sig);
+    return;
+  }
   int idle = 0;
   if (!g_sections.compare_exchange_strong(idle, -1)) {
     g_pending_signal.store(sig);  // the section in progress delivers it when it ends
@@ -74,6 +78,7 @@ void on_signal(int sig) {
 void install_signal_handlers() {
   static std::once_flag once;
   std::call_once(once, [] {
+    g_owner = ::getpid();
     for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
       struct sigaction old = {};
       if (::sigaction(sig, nullptr, &old) != 0 || (old.sa_flags & SA_SIGINFO) || old.sa_handler != SIG_DFL) continue;
@@ -122,7 +127,6 @@ int register_temporary(const fs::path& path) {
     Slot& slot = g_slots[i];
     if (slot.state.load() != 0) continue;
     std::memcpy(slot.path, name.c_str(), name.size() + 1);
-    slot.owner = ::getpid();
     slot.state.store(1);
     return i;
   }
