@@ -205,6 +205,10 @@ TEST(OutputIsAnInput, AnalysisIntoTheScenesFolderKeepsItsMask) {
                  "is not an analysis folder (no analysis.json) but holds mask.exr");
   EXPECT_EQ(read_text(f / "mask.exr"), mask);
   EXPECT_FALSE(fs::exists(f / "albedo.exr"));
+  // Asked for, it is done: the folder is then an analysis folder.
+  const auto forced = run_cli({"analyze", (f / "scene.json").string(), "-o", f.dir.string(), "--spp", "1", "--force"});
+  EXPECT_EQ(forced.status, 0) << forced.err;
+  EXPECT_TRUE(fs::exists(f / "analysis.json"));
 }
 
 TEST(OutputIsAnInput, RenderIntoItsAnalysisImagesIsRefused) {
