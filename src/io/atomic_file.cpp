@@ -38,7 +38,7 @@ std::atomic<bool> g_force{false};
 
 constexpr int kSlots = 128;
 struct Slot {
-  std::atomic<int> state{0};  // 0 free, 1 live
+  std::atomic<int> state{0};  // 0 free, 1 live, 2 being filled
   char path[PATH_MAX] = {};
 };
 Slot g_slots[kSlots];
@@ -125,7 +125,8 @@ int register_temporary(const fs::path& path) {
   const Section section;
   for (int i = 0; i < kSlots; ++i) {
     Slot& slot = g_slots[i];
-    if (slot.state.load() != 0) continue;
+    int free = 0;
+    if (!slot.state.compare_exchange_strong(free, 2)) continue;  // sections may run on several threads
     std::memcpy(slot.path, name.c_str(), name.size() + 1);
     slot.state.store(1);
     return i;
