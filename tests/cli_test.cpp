@@ -71,7 +71,7 @@ TEST(Cli, VersionIsTheProjectVersion) {
 
 TEST(Cli, EveryCommandHasAManPageHelpWithExamples) {
   const std::string top = relight_stdout({"--help"});
-  for (const std::string command : {"analyze", "render", "rig", "fit", "compare", "preview", "camera-from-fspy"}) {
+  for (const std::string command : {"analyze", "render", "rig", "fit", "compare", "preview", "camera-from-fspy", "register"}) {
     EXPECT_NE(top.find("  " + command + " "), std::string::npos) << command << " missing from relight --help";
     const std::string help = relight_stdout({command, "--help"});
     for (const char* section : {"DESCRIPTION", "EXAMPLES", "EXIT STATUS", "SEE ALSO"})
