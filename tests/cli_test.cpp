@@ -69,13 +69,12 @@ std::string relight_stdout(std::vector<std::string> args) {
   return out;
 }
 
-TEST(Cli, VersionIsTheProjectVersion) {
-  EXPECT_EQ(relight_stdout({"--version"}), "relight " RELIGHT_VERSION "\n");
-}
+TEST(Cli, VersionIsTheProjectVersion) { EXPECT_EQ(relight_stdout({"--version"}), "relight " RELIGHT_VERSION "\n"); }
 
 TEST(Cli, EveryCommandHasAManPageHelpWithExamples) {
   const std::string top = relight_stdout({"--help"});
-  for (const std::string command : {"analyze", "render", "rig", "fit", "compare", "preview", "camera-from-fspy"}) {
+  for (const std::string command :
+       {"analyze", "render", "rig", "fit", "compare", "preview", "camera-from-fspy", "register"}) {
     EXPECT_NE(top.find("  " + command + " "), std::string::npos) << command << " missing from relight --help";
     const std::string help = relight_stdout({command, "--help"});
     for (const char* section : {"DESCRIPTION", "EXAMPLES", "EXIT STATUS", "SEE ALSO"})
@@ -105,9 +104,8 @@ TEST(Cli, AnalyseRigRenderGivesBackThePhoto) {
 
 TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
   const fs::path dir = temp_folder("renders");
-  ASSERT_EQ(relight_run({"analyze", (kRoom / "scene.json").string(), "-o", dir.string(), "--spp", "8",
-                         "--save-renders"}),
-            0);
+  ASSERT_EQ(
+      relight_run({"analyze", (kRoom / "scene.json").string(), "-o", dir.string(), "--spp", "8", "--save-renders"}), 0);
   std::ifstream json(dir / "analysis.json");
   const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   const size_t at = text.find("\"iterations\":");
@@ -137,10 +135,10 @@ TEST(Cli, RadiosityAnalysisIsRecordedAndRendersFrom) {
   const relight::Image truth = relight::read_image(kRoom / "albedo_gt.exr");
   EXPECT_GT(relight::psnr(relight::clip01(relight::read_image(dir / "analysis" / "albedo.exr")), truth), 25.0);
   // The folder is a valid analysis for later renders.
-  EXPECT_EQ(relight_run({"render", (kRoom / "scene.json").string(), "--rig", (kRoom / "rigs" / "evening.json").string(),
-                         "--analysis", (dir / "analysis").string(), "-o", (dir / "evening.exr").string(), "--spp",
-                         "4"}),
-            0);
+  EXPECT_EQ(
+      relight_run({"render", (kRoom / "scene.json").string(), "--rig", (kRoom / "rigs" / "evening.json").string(),
+                   "--analysis", (dir / "analysis").string(), "-o", (dir / "evening.exr").string(), "--spp", "4"}),
+      0);
   EXPECT_TRUE(fs::exists(dir / "evening.exr"));
 }
 
@@ -340,3 +338,30 @@ TEST(Cli, MeshRefusesATrueAlbedoOfAnotherSize) {
 }
 
 }  // namespace
+
+// The example room with its camera turned about 1 degree (look_at 7 cm
+// sideways at 4 m), its files named by absolute paths.
+fs::path room_with_camera_off(const fs::path& dir) {
+  std::ifstream in(kRoom / "scene.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  for (const char* key : {"photo", "geometry"}) j[key] = (kRoom / j[key].get<std::string>()).string();
+  j["camera"]["look_at"][0] = j["camera"]["look_at"][0].get<double>() + 0.07;
+  const fs::path scene = dir / "scene.json";
+  std::ofstream(scene) << j.dump();
+  return scene;
+}
+
+TEST(Cli, RegisterTurnsTheCameraBackOrRefusesBeyondItsLimit) {
+  const fs::path dir = temp_folder("register");
+  const fs::path scene = room_with_camera_off(dir);
+  // Beyond --max-turn: exit 2, nothing written.
+  EXPECT_EQ(relight_run({"register", scene.string(), "--max-turn", "0.3", "-o", (dir / "tight.json").string()}), 2);
+  EXPECT_FALSE(fs::exists(dir / "tight.json"));
+  ASSERT_EQ(relight_run({"register", scene.string(), "-o", (dir / "registered.json").string()}), 0);
+  std::ifstream in(dir / "registered.json");
+  const nlohmann::json registered = nlohmann::json::parse(in);
+  std::ifstream original(kRoom / "scene.json");
+  const nlohmann::json truth = nlohmann::json::parse(original);
+  // Back to within 1.5 cm of the true look_at (0.2 degrees), from 7 cm.
+  EXPECT_NEAR(registered["camera"]["look_at"][0].get<double>(), truth["camera"]["look_at"][0].get<double>(), 0.015);
+}

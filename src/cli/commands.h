@@ -11,6 +11,7 @@
 #include <string>
 
 #include "analysis/analyze.h"
+#include "analysis/camera_registration.h"
 #include "core/progress.h"
 #include "render/ray_scene.h"
 
@@ -27,6 +28,7 @@ void add_preview_command(CLI::App& app, Action& action);
 void add_fit_command(CLI::App& app, Action& action);
 void add_mesh_command(CLI::App& app, Action& action);
 void add_camera_from_fspy_command(CLI::App& app, Action& action);
+void add_register_command(CLI::App& app, Action& action);
 
 // A loaded scene with its ray-tracing structure and G-buffer.
 struct LoadedScene {
@@ -57,6 +59,11 @@ struct HelpExample {
   const char* effect;
 };
 std::string help_footer(const char* description, std::initializer_list<HelpExample> examples);
+
+// Registers the scene's camera to its photo (analysis/camera_registration.h)
+// and prints what moved and how much the edge mismatch fell.
+RegistrationResult register_and_report(Scene& scene, const RayScene& rays, const RegistrationOptions& options,
+                                       Progress& progress);
 
 // Options shared by analyze and render.
 void add_sampling_options(CLI::App& cmd, AnalysisOptions& options);

@@ -129,8 +129,9 @@ int run(std::span<const std::string> args) {
   add_fit_command(app, action);
   add_mesh_command(app, action);
   add_camera_from_fspy_command(app, action);
+  add_register_command(app, action);
   bool force = false;
-  for (const char* writer : {"analyze", "render", "rig", "preview", "fit", "mesh", "camera-from-fspy"})
+  for (const char* writer : {"analyze", "render", "rig", "preview", "fit", "mesh", "camera-from-fspy", "register"})
     app.get_subcommand(writer)->add_flag(
         "--force", force,
         "replace an output file that is read-only (keeping its mode); analyze: also write into a folder holding "

@@ -32,16 +32,19 @@ GBuffer::GBuffer(const Camera& camera, const RayScene& scene, int samples_per_pi
   });
   bool any = false;
   for (float c : coverage_) any |= c > 0.0f;
-  if (!any) throw InputError(scene_file, "/camera", "the camera sees no geometry: check position, look_at and the mesh");
+  if (!any)
+    throw InputError(scene_file, "/camera", "the camera sees no geometry: check position, look_at and the mesh");
 }
 
 bool GBuffer::same_surface(int x, int y, int nx, int ny) const {
   const GBufferSample& a = central(x, y);
   const GBufferSample& b = central(nx, ny);
-  if (!a.hit || !b.hit) return false;
-  if (a.surface.prim == b.surface.prim) return true;
-  return a.surface.geometric_normal.dot(b.surface.geometric_normal) > 0.9f &&
-         std::abs(a.surface.distance - b.surface.distance) < 0.03f * a.surface.distance;
+  return a.hit && b.hit && same_surface(a.surface, b.surface);
+}
+
+bool GBuffer::same_surface(const SurfacePoint& a, const SurfacePoint& b) {
+  if (a.prim == b.prim) return true;
+  return a.geometric_normal.dot(b.geometric_normal) > 0.9f && std::abs(a.distance - b.distance) < 0.03f * a.distance;
 }
 
 Vec2 GBuffer::sample_position(int x, int y, int k) const {

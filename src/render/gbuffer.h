@@ -38,6 +38,8 @@ class GBuffer {
   // Whether two pixels see the same surface: the same triangle, or a similar
   // normal (within ~25 degrees) at a similar depth (within 3 %).
   bool same_surface(int x, int y, int nx, int ny) const;
+  // The same test on two surface points (both hit).
+  static bool same_surface(const SurfacePoint& a, const SurfacePoint& b);
 
  private:
   int width_, height_, spp_, grid_, central_;
