@@ -132,6 +132,24 @@ Image read_image(const fs::path& path) {
   return img;
 }
 
+EncodedImage read_encoded_image(const fs::path& path) {
+  const RawImage raw = read_raw(path, [](const ImageSpec& spec) { return std::pair(0, spec.nchannels >= 3 ? 3 : 1); });
+  if (!is_low_dynamic_range(raw.spec))
+    throw InputError(path.string(), "",
+                     "is a floating-point (HDR) image; brackets are the camera's 8/16-bit images (JPEG, PNG, TIFF)");
+  EncodedImage img;
+  img.width = raw.width;
+  img.height = raw.height;
+  img.rgb.resize(size_t(raw.width) * raw.height * 3);
+  for (size_t p = 0; p < size_t(raw.width) * raw.height; ++p)
+    for (int c = 0; c < 3; ++c) {
+      const float v = raw.data[p * raw.channels + (raw.channels == 3 ? c : 0)];  // OIIO: [0,1]
+      img.rgb[p * 3 + c] = uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    }
+  img.exposure_time = raw.spec.get_float_attribute("ExposureTime", 0.0f);
+  return img;
+}
+
 std::vector<float> read_scalar_image(const fs::path& path, int& width, int& height) {
   // The first channel, or the last one named Y or A.
   const RawImage raw = read_raw(path, [](const ImageSpec& spec) {

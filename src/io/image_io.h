@@ -36,6 +36,16 @@ inline constexpr float kMaxPixelValue = 1.0e20f;
 // warning.
 Image read_image(const std::filesystem::path& path);
 
+// An 8-bit camera image as stored (the camera's tone curve not undone), for
+// merging brackets: RGB codes 0-255, and the exposure time (s) from its EXIF
+// ExposureTime, 0 where the file has none. 16-bit files are rounded to 8 bits.
+struct EncodedImage {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgb;  // 3 per pixel, row 0 at the top
+  float exposure_time = 0.0f;
+};
+EncodedImage read_encoded_image(const std::filesystem::path& path);
+
 // Reads one channel (the first, or the one named Y/A if present) as a scalar
 // image, e.g. a mask.
 std::vector<float> read_scalar_image(const std::filesystem::path& path, int& width, int& height);
