@@ -265,6 +265,23 @@ TEST(HdrMergeCommand, RefusesOneImageMismatchedSizesAndMissingTimes) {
                  "file not found", out);
 }
 
+// An 8-bit photo: one sRGB warning per run, though render reads the photo
+// twice (for the analysis and for the G-buffer).
+TEST(LdrPhoto, WarnsOncePerRun) {
+  SceneFolder f("ldr_photo_warning");
+  write_png(f / "photo.png", Image(8, 6, Vec3(0.3f, 0.25f, 0.2f)));
+  f.scene["photo"] = "photo.png";
+  f.write_json();
+  const std::string scene = (f / "scene.json").string();
+  ASSERT_EQ(run_cli({"analyze", scene, "-o", (f / "analysis").string(), "--spp", "1"}).status, 0);
+  const auto r = run_cli({"render", scene, "--rig", (f / "rig.json").string(), "--analysis", (f / "analysis").string(),
+                          "-o", (f / "relit.exr").string(), "--spp", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  size_t warnings = 0;
+  for (size_t at = 0; (at = r.err.find("taken as sRGB-encoded", at)) != std::string::npos; ++at) ++warnings;
+  EXPECT_EQ(warnings, 1u) << r.err;
+}
+
 TEST(ProbeFromPhotoCommand, WritesTheCroppedBall) {
   SceneFolder f("probe_from_photo");
   const Circle truth{141.3, 117.6, 63.2};

@@ -145,6 +145,7 @@ int run(std::span<const std::string> args) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   set_max_image_pixels(max_pixels);
+  forget_image_warnings();
   set_repair_meshes(repair_mesh);
   set_force_outputs(force);
   set_confine_to_scene_folder(confine);
