@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "analysis/fit.h"
+#include "analysis/view_checks.h"
 #include "cli/commands.h"
 #include "io/atomic_file.h"
 #include "io/scene_io.h"
@@ -38,6 +39,7 @@ void add_fit_command(CLI::App& app, Action& action) {
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
       LoadedScene s = load_for_rendering(args->scene, args->options, progress);
+      warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
       FitOptions options;
       options.paths_per_pixel = args->options.paths_per_pixel;
       options.seed = args->options.seed;
