@@ -8,12 +8,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "reference_scenes.h"
 #include "sanitizer.h"
@@ -137,6 +140,21 @@ json area() {
           {"size", {1, 1}}, {"power", 100}};
 }
 json sun() { return {{"type", "directional"}, {"direction", {0, 0.3, -1}}, {"irradiance", 3}}; }
+
+// geometry.obj in millimetres (the camera and the light stay in metres),
+// the camera looking level along the inside of the 1000-unit cube.
+void geometry_in_millimetres(SceneFolder& f) {
+  std::istringstream in(kGeometry);
+  std::string text;
+  for (std::string line; std::getline(in, line);) {
+    float x, y, z;
+    if (std::sscanf(line.c_str(), "v %f %f %f", &x, &y, &z) == 3)
+      line = fmt::format("v {} {} {}", x * 1000, y * 1000, z * 1000);
+    text += line + "\n";
+  }
+  write_text(f / "geometry.obj", text);
+  f.scene["camera"]["look_at"] = {0, 0, 2};
+}
 
 const std::vector<Row>& catalogue() {
   static const std::vector<Row> rows = {
@@ -360,6 +378,17 @@ const std::vector<Row>& catalogue() {
        "photo.exr", "negative pixel values (noise down to -0.0001) clamped to 0", 0},
       {"UnknownKey", [](SceneFolder& f) { f.scene["exposure"] = 2; }, Command::load, "scene.json",
        "/exposure: unknown key ignored", 0},
+      // mistakes seen in the view (src/analysis/view_checks.cpp), warned before fit and analyze
+      {"LightBelowTheFloorLightsNothingInView", [](SceneFolder& f) { light(f)["position"] = {2, -2, -1}; },
+       Command::analyze, "scene.json", "/lights/0 (point 0): lights nothing the camera sees", 0},
+      {"GeometryCoversLittleOfThePhoto",
+       [](SceneFolder& f) {
+         f.replace_photo(Image(80, 60, Vec3(0.3f, 0.25f, 0.2f)));
+         f.scene["camera"]["position"] = {0, -30, 2};
+       },
+       Command::analyze, "geometry.obj", "the geometry covers 0.5 % of the photo", 0},
+      {"GeometryInMillimetres", geometry_in_millimetres, Command::analyze, "geometry.obj",
+       "123 times as far; is the geometry in centimetres", 0},
   };
   return rows;
 }

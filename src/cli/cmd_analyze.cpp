@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "analysis/view_checks.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -69,6 +70,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
     action = [args](Progress& progress) {
       const auto start = std::chrono::steady_clock::now();
       LoadedScene s = load_for_rendering(args->scene, args->options, progress);
+      warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
       AnalysisOptions options = args->options;
       options.strategy = args->strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args->strategy);
       options.interreflection = args->interreflection == "on";

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "analysis/fit.h"
+#include "analysis/view_checks.h"
 #include "cli/commands.h"
 #include "io/atomic_file.h"
 #include "io/scene_io.h"
@@ -44,6 +45,7 @@ void add_fit_command(CLI::App& app, Action& action) {
         register_and_report(s.scene, *s.rays, RegistrationOptions{}, progress);
         s.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s.scene, *s.rays, args->options));
       }
+      warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
       FitOptions options;
       options.paths_per_pixel = args->options.paths_per_pixel;
       options.seed = args->options.seed;

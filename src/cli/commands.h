@@ -29,6 +29,8 @@ void add_fit_command(CLI::App& app, Action& action);
 void add_mesh_command(CLI::App& app, Action& action);
 void add_camera_from_fspy_command(CLI::App& app, Action& action);
 void add_register_command(CLI::App& app, Action& action);
+void add_hdr_merge_command(CLI::App& app, Action& action);
+void add_probe_from_photo_command(CLI::App& app, Action& action);
 
 // A loaded scene with its ray-tracing structure and G-buffer.
 struct LoadedScene {

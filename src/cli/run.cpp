@@ -130,8 +130,11 @@ int run(std::span<const std::string> args) {
   add_mesh_command(app, action);
   add_camera_from_fspy_command(app, action);
   add_register_command(app, action);
+  add_hdr_merge_command(app, action);
+  add_probe_from_photo_command(app, action);
   bool force = false;
-  for (const char* writer : {"analyze", "render", "rig", "preview", "fit", "mesh", "camera-from-fspy", "register"})
+  for (const char* writer : {"analyze", "render", "rig", "preview", "fit", "mesh", "camera-from-fspy", "register",
+                             "hdr-merge", "probe-from-photo"})
     app.get_subcommand(writer)->add_flag(
         "--force", force,
         "replace an output file that is read-only (keeping its mode); analyze: also write into a folder holding "
@@ -144,6 +147,7 @@ int run(std::span<const std::string> args) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   set_max_image_pixels(max_pixels);
+  forget_image_warnings();
   set_repair_meshes(repair_mesh);
   set_force_outputs(force);
   set_confine_to_scene_folder(confine);

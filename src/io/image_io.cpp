@@ -7,6 +7,8 @@
 #include <atomic>
 #include <cmath>
 #include <functional>
+#include <mutex>
+#include <set>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -67,6 +69,21 @@ RawImage read_raw(const fs::path& path, const std::function<std::pair<int, int>(
   return raw;
 }
 
+// A warning about an image file, given once per run however often the file
+// is read (render reads the photo for the analysis and for the G-buffer).
+std::mutex g_warned_mutex;
+std::set<std::string> g_warned;  // path and message
+
+template <typename... Args>
+void warn_once(const fs::path& path, fmt::format_string<Args...> format, Args&&... args) {
+  const std::string text = fmt::format(format, std::forward<Args>(args)...);
+  {
+    const std::lock_guard lock(g_warned_mutex);
+    if (!g_warned.insert(path.string() + '\n' + text).second) return;
+  }
+  spdlog::warn("{}", text);
+}
+
 // Radiance cannot be negative, but denoisers and black-level subtraction
 // leave small negative noise: values above -1 % of the image's mean are
 // clamped to 0 with a warning, anything below is refused.
@@ -81,7 +98,7 @@ void clamp_negative_noise(const fs::path& path, RawImage& raw) {
     throw InputError(path.string(), fmt::format("pixel ({}, {})", pixel % raw.width, pixel / raw.width),
                      fmt::format("holds the negative value {:g}; expected radiance >= 0", *lowest));
   }
-  spdlog::warn("{}: negative pixel values (noise down to {:g}) clamped to 0", path.string(), *lowest);
+  warn_once(path, "{}: negative pixel values (noise down to {:g}) clamped to 0", path.string(), *lowest);
   for (float& v : raw.data) v = std::max(v, 0.0f);
 }
 
@@ -99,6 +116,11 @@ void write_pixels(const fs::path& path, const ImageSpec& spec, const void* data,
 }
 
 }  // namespace
+
+void forget_image_warnings() {
+  const std::lock_guard lock(g_warned_mutex);
+  g_warned.clear();
+}
 
 int64_t max_image_pixels() { return g_max_pixels.load(); }
 void set_max_image_pixels(int64_t pixels) { g_max_pixels.store(pixels); }
@@ -120,8 +142,8 @@ Image read_image(const fs::path& path) {
   RawImage raw = read_raw(path, [](const ImageSpec& spec) { return std::pair(0, spec.nchannels >= 3 ? 3 : 1); });
   clamp_negative_noise(path, raw);
   const bool ldr = is_low_dynamic_range(raw.spec);
-  if (ldr) spdlog::warn("{}: 8/16-bit image taken as sRGB-encoded and linearised; an HDR photo is better",
-                        path.string());
+  if (ldr) warn_once(path, "{}: 8/16-bit image taken as sRGB-encoded and linearised; an HDR photo is better",
+                     path.string());
   Image img(raw.width, raw.height);
   for (size_t p = 0; p < img.size(); ++p) {
     const float* px = &raw.data[p * raw.channels];
@@ -129,6 +151,24 @@ Image read_image(const fs::path& path) {
     if (ldr) c = Vec3(srgb_decode(c.x()), srgb_decode(c.y()), srgb_decode(c.z()));
     img.pixels[p] = c;
   }
+  return img;
+}
+
+EncodedImage read_encoded_image(const fs::path& path) {
+  const RawImage raw = read_raw(path, [](const ImageSpec& spec) { return std::pair(0, spec.nchannels >= 3 ? 3 : 1); });
+  if (!is_low_dynamic_range(raw.spec))
+    throw InputError(path.string(), "",
+                     "is a floating-point (HDR) image; brackets are the camera's 8/16-bit images (JPEG, PNG, TIFF)");
+  EncodedImage img;
+  img.width = raw.width;
+  img.height = raw.height;
+  img.rgb.resize(size_t(raw.width) * raw.height * 3);
+  for (size_t p = 0; p < size_t(raw.width) * raw.height; ++p)
+    for (int c = 0; c < 3; ++c) {
+      const float v = raw.data[p * raw.channels + (raw.channels == 3 ? c : 0)];  // OIIO: [0,1]
+      img.rgb[p * 3 + c] = uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    }
+  img.exposure_time = raw.spec.get_float_attribute("ExposureTime", 0.0f);
   return img;
 }
 

@@ -29,12 +29,26 @@ bool is_black(const Image& image);
 // are corrupt data and would overflow float sums in the renderer.
 inline constexpr float kMaxPixelValue = 1.0e20f;
 
+// The readers' warnings (an 8/16-bit file, negative noise) are given once
+// per file; a new run (a command) forgets them.
+void forget_image_warnings();
+
 // Reads an image as linear RGB. Throws InputError for a missing or unreadable
 // file, an empty image, one over max_image_pixels(), non-finite pixels or ones
 // beyond kMaxPixelValue, negative ones (noise within 1 % of the mean value below 0 is clamped with a
 // warning). 8/16-bit formats are taken as sRGB-encoded and linearised, with a
 // warning.
 Image read_image(const std::filesystem::path& path);
+
+// An 8-bit camera image as stored (the camera's tone curve not undone), for
+// merging brackets: RGB codes 0-255, and the exposure time (s) from its EXIF
+// ExposureTime, 0 where the file has none. 16-bit files are rounded to 8 bits.
+struct EncodedImage {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgb;  // 3 per pixel, row 0 at the top
+  float exposure_time = 0.0f;
+};
+EncodedImage read_encoded_image(const std::filesystem::path& path);
 
 // Reads one channel (the first, or the one named Y/A if present) as a scalar
 // image, e.g. a mask.
