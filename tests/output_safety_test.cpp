@@ -8,11 +8,9 @@
 // no temporary and the old EXR and PNG or the new ones, never one of each;
 // two renders to one output, and two analyses into one folder, take turns,
 // so that render never accepts a folder holding another scene's images.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
-#include <sys/file.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
@@ -497,35 +495,6 @@ TEST(AnalysisFolder, APipeAsAnalysisJsonIsRefused) {
   expect_refused({"render", (f / "scene.json").string(), "--rig", (f / "rig.json").string(), "--analysis",
                   analysis.string(), "-o", (f / "relit.exr").string(), "--spp", "1"},
                  analysis / "analysis.json", "is not a regular file");
-}
-
-// Another relight holding the analysis folder (here the test, by its lock)
-// makes render wait; Ctrl-C must end that wait at once, writing nothing.
-TEST(AnalysisFolder, CtrlCEndsAWaitForItsLock) {
-  LargeScene f("lock_wait");
-  const fs::path analysis = f / "analysis";
-  ASSERT_EQ(run_cli(f.analyze(analysis)).status, 0);
-  const int held = ::open(analysis.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  ASSERT_GE(held, 0);
-  ASSERT_EQ(::flock(held, LOCK_EX), 0);
-  const fs::path out = f / "relit.exr";
-  const pid_t render = spawn_cli(f.render(out, 300, analysis.string()));
-  ASSERT_GT(render, 0);
-  std::this_thread::sleep_for(3s);  // long enough to start and reach the lock
-  const bool ended_before_ctrl_c = has_ended(render);
-  ::kill(render, SIGINT);
-  const auto start = std::chrono::steady_clock::now();
-  while (!has_ended(render) && std::chrono::steady_clock::now() - start < 5s) std::this_thread::sleep_for(10ms);
-  const bool ended = has_ended(render);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  ::close(held);  // releases the lock: a render still waiting goes on and ends
-  const int status = wait_status(render);
-  EXPECT_FALSE(ended_before_ctrl_c) << "render did not wait for the folder's lock";
-  EXPECT_TRUE(ended) << "Ctrl-C did not end the wait for the lock within 5 s";
-  EXPECT_LT(seconds, 1.0);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130);
-  EXPECT_FALSE(fs::exists(out));
-  EXPECT_TRUE(hidden_files(f.dir).empty());
 }
 
 }  // namespace

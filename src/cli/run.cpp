@@ -21,7 +21,6 @@ namespace relight::cli {
 namespace {
 Progress* g_progress = nullptr;
 void on_interrupt(int) {
-  request_stop();
   if (g_progress) g_progress->cancel();
 }
 
@@ -161,7 +160,6 @@ int run(std::span<const std::string> args) {
   spdlog::set_level(verbose ? spdlog::level::info : spdlog::level::warn);
 
   Progress progress;
-  clear_stop_request();
   g_progress = &progress;
   std::signal(SIGINT, on_interrupt);
   struct ForgetProgress {

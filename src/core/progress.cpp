@@ -8,15 +8,6 @@
 
 namespace relight {
 
-namespace {
-std::atomic<bool> g_stop_requested{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "request_stop is called from a signal handler");
-}  // namespace
-
-void request_stop() { g_stop_requested.store(true); }
-void clear_stop_request() { g_stop_requested.store(false); }
-bool stop_requested() { return g_stop_requested.load(); }
-
 Progress& Progress::silent() {
   static Progress p(false);
   return p;

@@ -40,12 +40,4 @@ class Progress {
   std::mutex draw_mutex_;
 };
 
-// A stop asked of the whole process (Ctrl-C), for the waits that no Progress
-// reaches, such as a folder lock held by another relight. The command line's
-// SIGINT handler requests it (async-signal-safe) and clears it when a command
-// starts.
-void request_stop();
-void clear_stop_request();
-bool stop_requested();
-
 }  // namespace relight

@@ -10,17 +10,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
-#include <chrono>
 #include <climits>
 #include <csignal>
 #include <cstring>
 #include <fstream>
 #include <map>
 #include <mutex>
-#include <thread>
 
 #include "core/error.h"
-#include "core/progress.h"
 #include "io/output_guard.h"
 
 namespace relight {
@@ -399,13 +396,7 @@ FolderLock::FolderLock(const fs::path& folder, Mode mode) {
   if (::flock(fd_, operation | LOCK_NB) == 0) return;
   if (errno != EWOULDBLOCK) return;  // a file system without locks: go on unlocked
   spdlog::warn("{}: waiting for another relight writing or reading this folder", folder.string());
-  // Polled rather than blocking, so that Ctrl-C ends the wait.
-  while (::flock(fd_, operation | LOCK_NB) != 0) {
-    if (stop_requested()) {
-      ::close(fd_);
-      throw Cancelled();
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  while (::flock(fd_, operation) != 0 && errno == EINTR) {
   }
 }
 
