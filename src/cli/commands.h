@@ -39,6 +39,8 @@ struct LoadedScene {
   std::unique_ptr<GBuffer> gbuffer;
 };
 LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options, const Progress& progress);
+// The same for a scene already loaded from scene_path.
+LoadedScene prepare_for_rendering(Scene scene, const std::string& scene_path, const AnalysisOptions& options);
 
 // A scene loaded for rendering with its analysis: read from analysis_folder
 // (whose seed and sub-pixel samples then make the G-buffer) or, where that
@@ -52,6 +54,11 @@ struct AnalysedScene {
 
   Analysis analysis;
   LoadedScene loaded;
+
+ private:
+  // The scene is read once: the analysis is checked against it, then it is rendered.
+  AnalysedScene(Scene scene, const std::string& scene_path, const std::string& analysis_folder, AnalysisOptions options,
+                Progress& progress);
 };
 
 // A man-page style --help footer: DESCRIPTION, EXAMPLES (each a command line

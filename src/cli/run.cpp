@@ -60,8 +60,12 @@ class PrintableMessage : public spdlog::custom_flag_formatter {
 
 LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options,
                                const Progress& progress) {
+  return prepare_for_rendering(load_scene(scene_path, progress), scene_path, options);
+}
+
+LoadedScene prepare_for_rendering(Scene scene, const std::string& scene_path, const AnalysisOptions& options) {
   LoadedScene s;
-  s.scene = load_scene(scene_path, progress);
+  s.scene = std::move(scene);
   spdlog::info("{}: photo {}x{}, {} triangles, {} lights, {} probes", scene_path, s.scene.photo.width,
                s.scene.photo.height, s.scene.mesh.triangles.size(), s.scene.lights.size(), s.scene.probes.size());
   s.rays = std::make_unique<RayScene>(s.scene.mesh);
@@ -146,7 +150,6 @@ int run(std::span<const std::string> args) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   set_max_image_pixels(max_pixels);
-  forget_image_warnings();
   set_repair_meshes(repair_mesh);
   set_force_outputs(force);
   set_confine_to_scene_folder(confine);

@@ -1,14 +1,12 @@
 #include "io/image_io.h"
 
+#include <OpenImageIO/imageio.h>
 #include <spdlog/spdlog.h>
 
-#include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <functional>
-#include <mutex>
-#include <set>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -50,8 +48,9 @@ RawImage read_raw(const fs::path& path, const std::function<std::pair<int, int>(
   raw.width = raw.spec.width;
   raw.height = raw.spec.height;
   if (raw.width <= 0 || raw.height <= 0 || raw.spec.nchannels <= 0)
-    throw InputError(name, "", fmt::format("the image is empty ({}x{} pixels, {} channels)", raw.width, raw.height,
-                                           raw.spec.nchannels));
+    throw InputError(
+        name, "",
+        fmt::format("the image is empty ({}x{} pixels, {} channels)", raw.width, raw.height, raw.spec.nchannels));
   expect_within_pixel_limit(name, "image", raw.width, raw.height);
   const auto [first, last] = pick_channels(raw.spec);
   raw.channels = last - first;
@@ -69,21 +68,6 @@ RawImage read_raw(const fs::path& path, const std::function<std::pair<int, int>(
   return raw;
 }
 
-// A warning about an image file, given once per run however often the file
-// is read (render reads the photo for the analysis and for the G-buffer).
-std::mutex g_warned_mutex;
-std::set<std::string> g_warned;  // path and message
-
-template <typename... Args>
-void warn_once(const fs::path& path, fmt::format_string<Args...> format, Args&&... args) {
-  const std::string text = fmt::format(format, std::forward<Args>(args)...);
-  {
-    const std::lock_guard lock(g_warned_mutex);
-    if (!g_warned.insert(path.string() + '\n' + text).second) return;
-  }
-  spdlog::warn("{}", text);
-}
-
 // Radiance cannot be negative, but denoisers and black-level subtraction
 // leave small negative noise: values above -1 % of the image's mean are
 // clamped to 0 with a warning, anything below is refused.
@@ -98,7 +82,7 @@ void clamp_negative_noise(const fs::path& path, RawImage& raw) {
     throw InputError(path.string(), fmt::format("pixel ({}, {})", pixel % raw.width, pixel / raw.width),
                      fmt::format("holds the negative value {:g}; expected radiance >= 0", *lowest));
   }
-  warn_once(path, "{}: negative pixel values (noise down to {:g}) clamped to 0", path.string(), *lowest);
+  spdlog::warn("{}: negative pixel values (noise down to {:g}) clamped to 0", path.string(), *lowest);
   for (float& v : raw.data) v = std::max(v, 0.0f);
 }
 
@@ -116,11 +100,6 @@ void write_pixels(const fs::path& path, const ImageSpec& spec, const void* data,
 }
 
 }  // namespace
-
-void forget_image_warnings() {
-  const std::lock_guard lock(g_warned_mutex);
-  g_warned.clear();
-}
 
 int64_t max_image_pixels() { return g_max_pixels.load(); }
 void set_max_image_pixels(int64_t pixels) { g_max_pixels.store(pixels); }
@@ -142,8 +121,8 @@ Image read_image(const fs::path& path) {
   RawImage raw = read_raw(path, [](const ImageSpec& spec) { return std::pair(0, spec.nchannels >= 3 ? 3 : 1); });
   clamp_negative_noise(path, raw);
   const bool ldr = is_low_dynamic_range(raw.spec);
-  if (ldr) warn_once(path, "{}: 8/16-bit image taken as sRGB-encoded and linearised; an HDR photo is better",
-                     path.string());
+  if (ldr)
+    spdlog::warn("{}: 8/16-bit image taken as sRGB-encoded and linearised; an HDR photo is better", path.string());
   Image img(raw.width, raw.height);
   for (size_t p = 0; p < img.size(); ++p) {
     const float* px = &raw.data[p * raw.channels];

@@ -29,10 +29,6 @@ bool is_black(const Image& image);
 // are corrupt data and would overflow float sums in the renderer.
 inline constexpr float kMaxPixelValue = 1.0e20f;
 
-// The readers' warnings (an 8/16-bit file, negative noise) are given once
-// per file; a new run (a command) forgets them.
-void forget_image_warnings();
-
 // Reads an image as linear RGB. Throws InputError for a missing or unreadable
 // file, an empty image, one over max_image_pixels(), non-finite pixels or ones
 // beyond kMaxPixelValue, negative ones (noise within 1 % of the mean value below 0 is clamped with a
