@@ -11,6 +11,7 @@ packages=(
   qt6-base-dev libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   xvfb xauth
   libxxhash-dev                      # content hashes of the analysis inputs
+  libopencv-dev                      # registration (Canny, distance transforms), hdr-merge (photo module), probe-from-photo (HoughCircles)
   blender                            # blender_test: the Blender exporter (about a minute to install)
   clang-14 libclang-rt-14-dev llvm-14  # asan and fuzz presets: clang, libFuzzer, llvm-symbolizer
 )

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <limits>
@@ -15,6 +16,10 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "reference_scenes.h"
+#include "sanitizer.h"
 #include "scene_folder.h"
 
 namespace {
@@ -23,7 +28,9 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 using relight::Image;
 using relight::Vec3;
+using relight::test::error_lines;
 using relight::test::kGeometry;
+using relight::test::kAddressSanitizer;
 using relight::test::read_text;
 using relight::test::run_cli;
 using relight::test::SceneFolder;
@@ -84,6 +91,47 @@ constexpr char kOffThatCrashesAssimp[] =
 
 json& light(SceneFolder& f) { return f.scene["lights"][0]; }
 
+// inner/scene.json: the scene with `edit` applied, in a subfolder that holds
+// copies of the photo and the geometry, so that "../" leaves its folder.
+void inner_scene(SceneFolder& f, const std::function<void(json&)>& edit) {
+  fs::create_directory(f / "inner");
+  for (const char* name : {"photo.exr", "geometry.obj"}) fs::copy_file(f / name, f / "inner" / name);
+  json scene = f.scene;
+  edit(scene);
+  write_text(f / "inner" / "scene.json", scene.dump(2));
+}
+
+// inner/geometry.gltf, a 4 m floor whose buffer is inline (a data: URI),
+// with `extra` merged in (images, or a buffer elsewhere), as the geometry of
+// inner/scene.json.
+void inner_gltf_floor(SceneFolder& f, const json& extra) {
+  json gltf = json::parse(R"({
+    "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "buffers": [{"byteLength": 60, "uri":
+      "data:application/octet-stream;base64,AAAAwAAAAAAAAADAAAAAQAAAAAAAAADAAAAAQAAAAAAAAABAAAAAwAAAAAAAAABAAAACAAEAAAADAAIA"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
+    "accessors": [
+      {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-2, 0, -2], "max": [2, 0, 2]},
+      {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}]
+  })");
+  gltf.merge_patch(extra);
+  inner_scene(f, [](json& scene) { scene["geometry"] = "geometry.gltf"; });
+  write_text(f / "inner" / "geometry.gltf", gltf.dump());
+}
+
+// inner/geometry.obj naming a material library one folder up.
+void inner_obj_with_mtllib_outside(SceneFolder& f) {
+  inner_scene(f, [](json&) {});
+  write_text(f / "inner" / "geometry.obj", std::string("mtllib ../materials.mtl\n") + kGeometry);
+  write_text(f / "materials.mtl", "newmtl grey\nKd 0.5 0.5 0.5\n");
+}
+
+void black_probe(SceneFolder& f) {
+  f.add_probe("equirect", 8, 4);
+  relight::write_exr(f / "probe.exr", Image(8, 4, Vec3::Zero()));
+}
+
 json spot() {
   return {{"type", "spot"}, {"position", {0, 0, 3}}, {"direction", {0, 0, -1}}, {"power", 100}, {"spot_angle_deg", 40}};
 }
@@ -92,6 +140,21 @@ json area() {
           {"size", {1, 1}}, {"power", 100}};
 }
 json sun() { return {{"type", "directional"}, {"direction", {0, 0.3, -1}}, {"irradiance", 3}}; }
+
+// geometry.obj in millimetres (the camera and the light stay in metres),
+// the camera looking level along the inside of the 1000-unit cube.
+void geometry_in_millimetres(SceneFolder& f) {
+  std::istringstream in(kGeometry);
+  std::string text;
+  for (std::string line; std::getline(in, line);) {
+    float x, y, z;
+    if (std::sscanf(line.c_str(), "v %f %f %f", &x, &y, &z) == 3)
+      line = fmt::format("v {} {} {}", x * 1000, y * 1000, z * 1000);
+    text += line + "\n";
+  }
+  write_text(f / "geometry.obj", text);
+  f.scene["camera"]["look_at"] = {0, 0, 2};
+}
 
 const std::vector<Row>& catalogue() {
   static const std::vector<Row> rows = {
@@ -259,7 +322,53 @@ const std::vector<Row>& catalogue() {
       {"AnalysisFolderIsAFile", [](SceneFolder& f) { write_text(f / "analysis", "a file"); }, Command::analyze,
        "analysis", "cannot create the output folder"},
 
+      // reads outside the scene's folder, refused with --confine-to-scene-folder
+      {"PhotoOutsideTheSceneFolder", [](SceneFolder& f) { inner_scene(f, [](json& s) { s["photo"] = "../photo.exr"; }); },
+       Command::load, "inner/scene.json", "/photo: names a file outside the scene's folder", 2,
+       {"--confine-to-scene-folder"}, "inner/scene.json"},
+      {"GeometryByAnAbsolutePathOutside",
+       [](SceneFolder& f) { inner_scene(f, [&](json& s) { s["geometry"] = (f / "geometry.obj").string(); }); },
+       Command::load, "inner/scene.json", "/geometry: names a file outside the scene's folder", 2,
+       {"--confine-to-scene-folder"}, "inner/scene.json"},
+      {"ProbeSymlinkedOutside",
+       [](SceneFolder& f) {
+         f.add_probe("equirect", 8, 4);
+         inner_scene(f, [](json&) {});
+         fs::create_symlink(f / "probe.exr", f / "inner" / "probe.exr");
+       },
+       Command::load, "inner/scene.json", "/probes/0/image: names a file outside the scene's folder", 2,
+       {"--confine-to-scene-folder"}, "inner/scene.json"},
+      {"GltfBufferOutside",
+       [](SceneFolder& f) {
+         inner_gltf_floor(f, {{"buffers", {{{"byteLength", 60}, {"uri", "../../../../../../../../../etc/passwd"}}}}});
+       },
+       Command::load, "geometry.gltf", "/buffers/0/uri: names a file outside the scene's folder", 2,
+       {"--confine-to-scene-folder"}, "inner/scene.json"},
+      {"ObjMaterialLibraryOutside", inner_obj_with_mtllib_outside, Command::load, "geometry.obj",
+       "line 1 (mtllib): names a file outside the scene's folder", 2, {"--confine-to-scene-folder"},
+       "inner/scene.json"},
+      // what lights nothing
+      {"NothingLightsTheScene",
+       [](SceneFolder& f) { light(f)["color"] = {0, 0, 0}; f.scene["background"] = {0, 0, 0}; }, Command::analyze,
+       "scene.json", "/lights: nothing lights the scene: every light is black"},
+      {"ProbeBlackWithStrategyProbe", black_probe, Command::analyze, "scene.json",
+       "/probes: every probe image is black", 2, {"--strategy", "probe"}},
+
       // Odd but valid: these must work.
+      {"PhotoOutsideTheSceneFolderWarns",
+       [](SceneFolder& f) { inner_scene(f, [](json& s) { s["photo"] = "../photo.exr"; }); }, Command::load,
+       "inner/scene.json", "/photo: reads a file outside the scene's folder", 0, {}, "inner/scene.json"},
+      {"GltfImageOutsideWarns",
+       [](SceneFolder& f) { inner_gltf_floor(f, {{"images", {{{"uri", "../../textures/wood.png"}}}}}); },
+       Command::load, "geometry.gltf", "/images/0/uri: reads a file outside the scene's folder", 0, {},
+       "inner/scene.json"},
+      {"ObjMaterialLibraryOutsideWarns", inner_obj_with_mtllib_outside, Command::load, "geometry.obj",
+       "line 1 (mtllib): reads a file outside the scene's folder", 0, {}, "inner/scene.json"},
+      {"GltfDataUriIsInsideTheFolder", [](SceneFolder& f) { inner_gltf_floor(f, json::object()); }, Command::load,
+       "geometry.gltf", "", 0, {"--confine-to-scene-folder"}, "inner/scene.json"},
+      {"LightBlack", [](SceneFolder& f) { light(f)["color"] = {0, 0, 0}; }, Command::load, "scene.json",
+       "/lights/0/color: the colour is black ([0, 0, 0]): the light lights nothing", 0},
+      {"ProbeBlack", black_probe, Command::load, "probe.exr", "the probe image is black everywhere", 0},
       {"SomeTrianglesDegenerateRepaired",
        [](SceneFolder& f) { write_text(f / "geometry.obj", std::string(kGeometry) + "f 1 1 2\n"); }, Command::load,
        "geometry.obj", "dropped 1 degenerate (zero-area) triangles", 0, {"--repair-mesh"}},
@@ -269,19 +378,22 @@ const std::vector<Row>& catalogue() {
        "photo.exr", "negative pixel values (noise down to -0.0001) clamped to 0", 0},
       {"UnknownKey", [](SceneFolder& f) { f.scene["exposure"] = 2; }, Command::load, "scene.json",
        "/exposure: unknown key ignored", 0},
+      // mistakes seen in the view (src/analysis/view_checks.cpp), warned before fit and analyze
+      {"LightBelowTheFloorLightsNothingInView", [](SceneFolder& f) { light(f)["position"] = {2, -2, -1}; },
+       Command::analyze, "scene.json", "/lights/0 (point 0): lights nothing the camera sees", 0},
+      {"GeometryCoversLittleOfThePhoto",
+       [](SceneFolder& f) {
+         f.replace_photo(Image(80, 60, Vec3(0.3f, 0.25f, 0.2f)));
+         f.scene["camera"]["position"] = {0, -30, 2};
+       },
+       Command::analyze, "geometry.obj", "the geometry covers 0.5 % of the photo", 0},
+      {"GeometryInMillimetres", geometry_in_millimetres, Command::analyze, "geometry.obj",
+       "123 times as far; is the geometry in centimetres", 0},
   };
   return rows;
 }
 
 // The lines of stderr that are not blank and not warnings.
-std::vector<std::string> error_lines(const std::string& err) {
-  std::vector<std::string> lines;
-  std::istringstream in(err);
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty() && line.rfind("relight: warning:", 0) != 0) lines.push_back(line);
-  return lines;
-}
-
 void PrintTo(const Row& row, std::ostream* out) { *out << row.name; }
 
 class BadInput : public testing::TestWithParam<Row> {};
@@ -339,6 +451,58 @@ INSTANTIATE_TEST_SUITE_P(Catalogue, BadInput, testing::ValuesIn(catalogue()),
 TEST(BadInputCatalogue, HoldsAtLeastFortyRejectedInputs) {
   const auto& rows = catalogue();
   EXPECT_GE(std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.status == 2; }), 40);
+}
+
+// The checks of the catalogue for a bad input run by hand: exit 2, one error
+// line that names `file` and says `problem`.
+void expect_one_error_line(const relight::test::CliResult& r, const std::string& file, const std::string& problem) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  const std::vector<std::string> errors = error_lines(r.err);
+  ASSERT_EQ(errors.size(), 1u) << r.err;
+  EXPECT_NE(errors[0].find(file), std::string::npos) << errors[0];
+  EXPECT_NE(errors[0].find(problem), std::string::npos) << errors[0];
+}
+
+// 44 bytes claiming 3e8 vertices: Assimp's OFF reader reserves them all
+// (3.6 GB) before it reads one. The reader's child runs into its limit.
+TEST(MeshReader, AHeaderClaimingMillionsOfVerticesRunsIntoTheMemoryLimit) {
+  if (kAddressSanitizer) GTEST_SKIP() << "AddressSanitizer's allocator reports and aborts on a failed allocation";
+  SceneFolder f("memory_bomb");
+  f.scene["geometry"] = "geometry.off";
+  write_text(f / "geometry.off", "OFF\n300000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  f.write_json();
+  const auto r = run_cli({"rig", (f / "scene.json").string(), "-o", (f / "out_rig.json").string()});
+  expect_one_error_line(r, "geometry.off", "the mesh reader ran out of its memory limit");
+  EXPECT_FALSE(fs::exists(f / "out_rig.json"));
+}
+
+// A name or a key in scene.json may hold terminal escape sequences (to clear
+// the screen, retitle the window, hide what follows): they reach stderr as
+// text, in errors and in warnings.
+TEST(BadInputText, ControlCharactersFromAFileReachTheTerminalEscaped) {
+  SceneFolder f("control_characters");
+  f.scene["photo"] = "\x1b]0;owned\x07\x1b[2Jphoto.exr";
+  f.scene["\x1b[8mhidden"] = 1;  // an unknown key: a warning
+  f.write_json();
+  const auto r = run_cli({"rig", (f / "scene.json").string(), "-o", (f / "out_rig.json").string()});
+  expect_one_error_line(r, "\\x1b]0;owned\\x07\\x1b[2Jphoto.exr", "file not found");
+  EXPECT_NE(r.err.find("/\\x1b[8mhidden: unknown key ignored"), std::string::npos) << r.err;
+  for (const char c : r.err) EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 && c != '\n') << "control byte " << int(c);
+}
+
+// The scenes made for relight name their own files: confinement refuses
+// nothing and nothing warns about a read outside.
+TEST(OutsideReads, TheExampleAndTheReferenceScenesReadOnlyInsideTheirFolders) {
+  std::vector<fs::path> scenes = {fs::path(RELIGHT_SOURCE_DIR) / "examples" / "room" / "scene.json"};
+  for (const char* name : {"outdoor", "bookcase", "studio"})
+    if (fs::exists(relight::test::reference_scenes_folder() / name / "scene.json"))
+      scenes.push_back(relight::test::reference_scenes_folder() / name / "scene.json");
+  SceneFolder out("confined_scenes");
+  for (const fs::path& scene : scenes) {
+    const auto r = run_cli({"rig", scene.string(), "-o", (out / "rig.json").string(), "--confine-to-scene-folder"});
+    EXPECT_EQ(r.status, 0) << scene << ": " << r.err;
+    EXPECT_EQ(r.err.find("outside"), std::string::npos) << scene << ": " << r.err;
+  }
 }
 
 }  // namespace

@@ -7,8 +7,9 @@ file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 set(exporter "${SOURCE_DIR}/tools/blender/relight_export.py")
 
+# Run in WORK, so that the relative paths below are relative to it (as a user's would be).
 function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  execute_process(COMMAND ${ARGN} WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
   endif()
@@ -16,11 +17,19 @@ function(run)
 endfunction()
 
 set(blender "${BLENDER}" -b --factory-startup --python-exit-code 1)
-run(${blender} --python "${SOURCE_DIR}/tools/blender/make_example_scene.py" -- "${WORK}/scene.blend" "${WORK}/photo.exr"
-    --render 32)
-run("${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${exporter}" -- "${WORK}/export"
-    --photo "${WORK}/photo.exr")
+run(${blender} --python "${SOURCE_DIR}/tools/blender/make_example_scene.py" -- scene.blend photo.exr --render 32)
+# (Blender itself resolves a relative .blend against $PWD, which WORKING_DIRECTORY does not set.)
+run("${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${exporter}" -- export --photo photo.exr)
 run("${RELIGHT}" rig "${WORK}/export/scene.json" -o "${WORK}/rig.json")
 run("${RELIGHT}" analyze "${WORK}/export/scene.json" -o "${WORK}/analysis" --spp 16)
 run("${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${SOURCE_DIR}/tests/blender/check_export.py" --
     "${exporter}" "${WORK}/export" "${WORK}/rig.json" "${WORK}/analysis" "${RELIGHT}")
+# From the command line a refused export is exit 2 and one line naming what is wrong.
+execute_process(COMMAND "${BLENDER}" -b "${WORK}/scene.blend" --python-exit-code 1 --python "${exporter}" --
+                        "${WORK}/refused" --photo "${WORK}/no-such-photo.exr"
+                RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+string(REGEX MATCHALL "relight_export: [^\n]*" lines "${err}")
+list(LENGTH lines count)
+if(NOT rc EQUAL 2 OR NOT count EQUAL 1 OR NOT err MATCHES "no-such-photo.exr does not exist" OR EXISTS "${WORK}/refused")
+  message(FATAL_ERROR "a missing photo: exit ${rc}, stderr:\n${err}")
+endif()

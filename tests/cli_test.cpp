@@ -4,13 +4,17 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <thread>
 
 #include "cli/commands.h"
 #include "io/image_io.h"
-#include "scene_folder.h"
 #include "io/mesh_io.h"
+#include "scene_folder.h"
 
 namespace fs = std::filesystem;
 
@@ -65,13 +69,12 @@ std::string relight_stdout(std::vector<std::string> args) {
   return out;
 }
 
-TEST(Cli, VersionIsTheProjectVersion) {
-  EXPECT_EQ(relight_stdout({"--version"}), "relight " RELIGHT_VERSION "\n");
-}
+TEST(Cli, VersionIsTheProjectVersion) { EXPECT_EQ(relight_stdout({"--version"}), "relight " RELIGHT_VERSION "\n"); }
 
 TEST(Cli, EveryCommandHasAManPageHelpWithExamples) {
   const std::string top = relight_stdout({"--help"});
-  for (const std::string command : {"analyze", "render", "rig", "fit", "compare", "preview", "camera-from-fspy"}) {
+  for (const std::string command :
+       {"analyze", "render", "rig", "fit", "compare", "preview", "camera-from-fspy", "register"}) {
     EXPECT_NE(top.find("  " + command + " "), std::string::npos) << command << " missing from relight --help";
     const std::string help = relight_stdout({command, "--help"});
     for (const char* section : {"DESCRIPTION", "EXAMPLES", "EXIT STATUS", "SEE ALSO"})
@@ -101,9 +104,8 @@ TEST(Cli, AnalyseRigRenderGivesBackThePhoto) {
 
 TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
   const fs::path dir = temp_folder("renders");
-  ASSERT_EQ(relight_run({"analyze", (kRoom / "scene.json").string(), "-o", dir.string(), "--spp", "8",
-                         "--save-renders"}),
-            0);
+  ASSERT_EQ(
+      relight_run({"analyze", (kRoom / "scene.json").string(), "-o", dir.string(), "--spp", "8", "--save-renders"}), 0);
   std::ifstream json(dir / "analysis.json");
   const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   const size_t at = text.find("\"iterations\":");
@@ -133,10 +135,10 @@ TEST(Cli, RadiosityAnalysisIsRecordedAndRendersFrom) {
   const relight::Image truth = relight::read_image(kRoom / "albedo_gt.exr");
   EXPECT_GT(relight::psnr(relight::clip01(relight::read_image(dir / "analysis" / "albedo.exr")), truth), 25.0);
   // The folder is a valid analysis for later renders.
-  EXPECT_EQ(relight_run({"render", (kRoom / "scene.json").string(), "--rig", (kRoom / "rigs" / "evening.json").string(),
-                         "--analysis", (dir / "analysis").string(), "-o", (dir / "evening.exr").string(), "--spp",
-                         "4"}),
-            0);
+  EXPECT_EQ(
+      relight_run({"render", (kRoom / "scene.json").string(), "--rig", (kRoom / "rigs" / "evening.json").string(),
+                   "--analysis", (dir / "analysis").string(), "-o", (dir / "evening.exr").string(), "--spp", "4"}),
+      0);
   EXPECT_TRUE(fs::exists(dir / "evening.exr"));
 }
 
@@ -228,6 +230,80 @@ TEST(Cli, PreviewRefusesABadSize) {
   EXPECT_NE(r.err.find("16by12"), std::string::npos) << r.err;
 }
 
+// Whether a process whose parent is this one exists (the mesh reader's child).
+bool has_child_process() {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(entry.path() / "stat");
+    std::string line;
+    std::getline(stat, line);
+    const size_t end_of_name = line.rfind(')');
+    if (end_of_name == std::string::npos) continue;
+    std::istringstream fields(line.substr(end_of_name + 1));
+    std::string state;
+    pid_t parent = 0;
+    if (fields >> state >> parent && parent == ::getpid()) return true;
+  }
+  return false;
+}
+
+// A Ctrl-C while the mesh reader's child reads a 1M-triangle OBJ (seconds of
+// work) ends the command as cancelled, nothing written; before, the read went
+// on and the rig was written.
+TEST(Cli, ACtrlCDuringTheMeshReadCancelsTheCommand) {
+  relight::test::SceneFolder folder("ctrl_c_mesh");
+  std::string obj;
+  const int n = 708;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) obj += "v " + std::to_string(i) + " " + std::to_string(j) + " 0\n";
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i + 1, b = a + 1, c = a + n, d = c + 1;
+      obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\nf " + std::to_string(a) +
+             " " + std::to_string(d) + " " + std::to_string(c) + "\n";
+    }
+  relight::test::write_text(folder / "geometry.obj", obj);
+  folder.write_json();
+  std::atomic<bool> done{false};
+  std::thread interrupt([&done] {
+    while (!done && !has_child_process()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (!done) ::kill(::getpid(), SIGINT);  // relight's handler is installed before any child is started
+  });
+  const auto r =
+      relight::test::run_cli({"rig", (folder / "scene.json").string(), "-o", (folder / "out.json").string()});
+  done = true;
+  interrupt.join();
+  EXPECT_EQ(r.status, 130) << r.err;
+  EXPECT_NE(r.err.find("cancelled; nothing was written"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(folder / "out.json"));
+}
+
+// --size makes the view's images: it is held to --max-pixels as photos are.
+TEST(Cli, PreviewRefusesASizeOverMaxPixels) {
+  relight::test::SceneFolder folder("preview_size_limit");
+  folder.write_json();
+  const auto r =
+      relight::test::run_cli({"preview", (folder / "scene.json").string(), "--rig", (folder / "rig.json").string(),
+                              "--size", "16x12", "--max-pixels", "100", "-o", (folder / "out").string()});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("--size: a view of 16x12 (0.0 Mpixel) is over the limit"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(folder / "out" / "frame_0000.png"));
+}
+
+// PSNR over no pixel is no figure: an all-zero mask is bad input, not "0.00 dB".
+TEST(Cli, CompareRefusesAMaskThatSelectsNoPixel) {
+  const fs::path dir = temp_folder("compare_zero_mask");
+  relight::write_exr(dir / "a.exr", relight::Image(4, 3, relight::Vec3(0.5f, 0.5f, 0.5f)));
+  relight::write_exr(dir / "b.exr", relight::Image(4, 3, relight::Vec3(0.4f, 0.5f, 0.5f)));
+  relight::write_exr(dir / "mask.exr", relight::Image(4, 3, relight::Vec3::Zero()));
+  const auto r = relight::test::run_cli(
+      {"compare", (dir / "a.exr").string(), (dir / "b.exr").string(), "--mask", (dir / "mask.exr").string()});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("mask.exr: the mask selects no pixel"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, MeshWritesTheRefinedMeshItsPictureAndItsCounts) {
   const fs::path dir = temp_folder("mesh");
   testing::internal::CaptureStdout();
@@ -262,3 +338,30 @@ TEST(Cli, MeshRefusesATrueAlbedoOfAnotherSize) {
 }
 
 }  // namespace
+
+// The example room with its camera turned about 1 degree (look_at 7 cm
+// sideways at 4 m), its files named by absolute paths.
+fs::path room_with_camera_off(const fs::path& dir) {
+  std::ifstream in(kRoom / "scene.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  for (const char* key : {"photo", "geometry"}) j[key] = (kRoom / j[key].get<std::string>()).string();
+  j["camera"]["look_at"][0] = j["camera"]["look_at"][0].get<double>() + 0.07;
+  const fs::path scene = dir / "scene.json";
+  std::ofstream(scene) << j.dump();
+  return scene;
+}
+
+TEST(Cli, RegisterTurnsTheCameraBackOrRefusesBeyondItsLimit) {
+  const fs::path dir = temp_folder("register");
+  const fs::path scene = room_with_camera_off(dir);
+  // Beyond --max-turn: exit 2, nothing written.
+  EXPECT_EQ(relight_run({"register", scene.string(), "--max-turn", "0.3", "-o", (dir / "tight.json").string()}), 2);
+  EXPECT_FALSE(fs::exists(dir / "tight.json"));
+  ASSERT_EQ(relight_run({"register", scene.string(), "-o", (dir / "registered.json").string()}), 0);
+  std::ifstream in(dir / "registered.json");
+  const nlohmann::json registered = nlohmann::json::parse(in);
+  std::ifstream original(kRoom / "scene.json");
+  const nlohmann::json truth = nlohmann::json::parse(original);
+  // Back to within 1.5 cm of the true look_at (0.2 degrees), from 7 cm.
+  EXPECT_NEAR(registered["camera"]["look_at"][0].get<double>(), truth["camera"]["look_at"][0].get<double>(), 0.015);
+}

@@ -24,6 +24,16 @@ if(WITH_STUDIO)
   endif()
 endif()
 
+# The installed formats page is the whole contract: the base scene and rig
+# formats, not only relight's extensions.
+file(READ "${PREFIX}/share/doc/relight/formats.md" formats)
+foreach(part "## The scene: `scene.json`" "### Camera" "### Lights" "### Light probes" "## The rig: `rig.json`")
+  string(FIND "${formats}" "${part}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "the installed formats.md has no \"${part}\"")
+  endif()
+endforeach()
+
 # The installed program runs from its new place and knows its version.
 execute_process(COMMAND "${PREFIX}/bin/relight" --version RESULT_VARIABLE rc OUTPUT_VARIABLE out
                 OUTPUT_STRIP_TRAILING_WHITESPACE)

@@ -54,9 +54,10 @@ int child_main(const std::string& mode, const fs::path& target) {
   return 0;
 }
 
-// The temporary file a writer of `target` is filling, if there is one.
+// The temporary file a writer of `target` is filling, if there is one (the
+// test's folder holds only the target).
 std::optional<fs::path> temporary_of(const fs::path& target) {
-  const std::string prefix = "." + target.stem().string() + ".tmp";
+  const std::string prefix = ".relight-";
   for (const auto& entry : fs::directory_iterator(target.parent_path()))
     if (entry.path().filename().string().rfind(prefix, 0) == 0) return entry.path();
   return std::nullopt;

@@ -110,4 +110,13 @@ inline CliResult run_cli(std::vector<std::string> args) {
   return result;
 }
 
+// The lines of stderr other than warnings: a refusal has exactly one.
+inline std::vector<std::string> error_lines(const std::string& err) {
+  std::vector<std::string> lines;
+  std::istringstream in(err);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line.rfind("relight: warning:", 0) != 0) lines.push_back(line);
+  return lines;
+}
+
 }  // namespace relight::test

@@ -12,6 +12,7 @@
 #include "io/atomic_file.h"
 #include "io/content_hash.h"
 #include "io/image_io.h"
+#include "io/input_file.h"
 
 namespace relight {
 
@@ -112,10 +113,26 @@ float residual_of(const Image& photo, const Image& albedo, const Image& illumina
 // file copied in from another analysis) is refused rather than mixed.
 constexpr const char* kAnalysisImages[] = {"albedo_surface.exr", "albedo.exr", "background.exr", "mask.exr"};
 
-std::string analysis_images_hash(const fs::path& folder) {
+// `file` names where each image is read from: the folder, or the writer's
+// own temporaries before they are renamed into it (the writer hashes its own
+// files, never what another writer may have put in the folder meanwhile).
+std::string analysis_images_hash(const std::function<fs::path(const char* name)>& file) {
   ContentHash hash;
-  for (const char* name : kAnalysisImages) hash.add_file(folder / name);
+  for (const char* name : kAnalysisImages) hash.add_file(file(name));
   return hash.hex();
+}
+
+// An analysis replaces an analysis: a folder holding files of its names but
+// no analysis.json (a scene's own folder with its mask.exr, say) is refused
+// unless forced, so that nothing of someone else's is overwritten.
+void expect_analysis_folder(const fs::path& folder) {
+  if (force_outputs() || fs::exists(folder / "analysis.json")) return;
+  for (const char* name :
+       {"illumination.exr", "background.exr", "albedo.exr", "albedo_surface.exr", "albedo.png", "mask.exr"})
+    if (fs::exists(fs::symlink_status(folder / name)))
+      throw InputError(folder.string(), "",
+                       std::string("is not an analysis folder (no analysis.json) but holds ") + name +
+                           ", which an analysis would replace; name another folder, or --force to replace it");
 }
 
 }  // namespace
@@ -238,6 +255,8 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (!fs::is_directory(folder)) throw InputError(folder.string(), "", "cannot create the output folder");
+  expect_analysis_folder(folder);
+  OutputBatch batch;  // the files appear together, analysis.json with them; the folder is locked meanwhile
   const int w = a.albedo.albedo.width, h = a.albedo.albedo.height;
   // The illumination as a user would look at it: the white-diffuse render,
   // with the environment where the pixel sees no geometry.
@@ -254,7 +273,7 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   nlohmann::json j;
   j["format"] = "relight-analysis/1";
   j["input_hash"] = analysis_input_hash(scene, a.options);
-  j["images_hash"] = analysis_images_hash(folder);
+  j["images_hash"] = analysis_images_hash([&](const char* name) { return batch.staged(folder / name); });
   j["method"] = to_string(a.options.method);
   j["strategy"] = to_string(a.options.strategy);
   j["paths_per_pixel"] = a.options.paths_per_pixel;
@@ -280,11 +299,14 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
     triangles.push_back({t.triangle, t.albedo.x(), t.albedo.y(), t.albedo.z()});
   j["unseen_triangles"] = std::move(triangles);
   write_text_atomically(folder / "analysis.json", j.dump(2) + "\n");
+  batch.commit();
 }
 
 Analysis load_analysis(const fs::path& folder, const Scene& scene) {
   const fs::path meta = folder / "analysis.json";
   if (!fs::exists(meta)) throw InputError(meta.string(), "", "not found: run 'relight analyze' into this folder first");
+  const FolderLock no_writer_meanwhile(folder, FolderLock::Mode::shared);  // see OutputBatch
+  expect_input_file(meta, "an analysis file (analysis.json)");
   nlohmann::json j;
   try {
     std::ifstream in(meta);
@@ -325,7 +347,8 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
       throw InputError(meta.string(), "/input_hash",
                        "the analysis is stale: " + scene.path.string() +
                            ", its photo, geometry or probes changed since it was made; re-run 'relight analyze'");
-    if (j.value("images_hash", std::string()) != analysis_images_hash(folder))
+    const auto in_folder = [&](const char* name) { return folder / name; };
+    if (j.value("images_hash", std::string()) != analysis_images_hash(in_folder))
       throw InputError(meta.string(), "/images_hash",
                        "the images of the analysis are not the ones it describes (an interrupted or mixed "
                        "analysis); re-run 'relight analyze'");

@@ -67,7 +67,7 @@ PhotoRadiance::ProbeView PhotoRadiance::view_of(const Probe& probe, const RaySce
       };
       bool one = hit_at(4, view.centre[i]);
       SurfacePoint hit;
-      for (int k = 0; k < 9 && one; ++k) one = k == 4 || (hit_at(k, hit) && on_same_surface(view.centre[i], hit));
+      for (int k = 0; k < 9 && one; ++k) one = k == 4 || (hit_at(k, hit) && GBuffer::same_surface(view.centre[i], hit));
       view.usable[i] = one;
     }
   });

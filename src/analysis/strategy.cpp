@@ -1,8 +1,11 @@
 #include "analysis/strategy.h"
 
+#include <algorithm>
+
 #include "analysis/probe_cleanup.h"
 #include "analysis/probe_lights.h"
 #include "core/error.h"
+#include "io/image_io.h"
 
 namespace relight {
 
@@ -31,6 +34,19 @@ void check_strategy(const Scene& scene, Strategy strategy) {
   if (strategy != Strategy::lights && scene.probes.empty())
     throw InputError(scene.path.string(), "/probes",
                      std::string("strategy '") + to_string(strategy) + "' needs at least one light probe");
+  const bool lights_emit = std::any_of(scene.lights.begin(), scene.lights.end(),
+                                       [](const Light& l) { return l.enabled && !l.emission().isZero(); });
+  const bool probes_emit =
+      std::any_of(scene.probes.begin(), scene.probes.end(), [](const Probe& p) { return !is_black(p.image); });
+  if (strategy == Strategy::probe && !probes_emit)
+    throw InputError(scene.path.string(), "/probes",
+                     "every probe image is black: strategy 'probe' lights the scene with the probes alone, and they "
+                     "measured no light (check the probe's exposure, or use --strategy lights)");
+  const bool environment_emits = strategy == Strategy::lights ? !scene.background.isZero() : probes_emit;
+  if (strategy != Strategy::probe && !lights_emit && !environment_emits)
+    throw InputError(scene.path.string(), "/lights",
+                     "nothing lights the scene: every light is black (colour [0, 0, 0]) or disabled, and the " +
+                         std::string(strategy == Strategy::lights ? "background is black" : "probes are black"));
 }
 
 Environment strategy_environment(const Scene& scene, const RayScene& rays, Strategy strategy) {

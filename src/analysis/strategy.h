@@ -18,7 +18,10 @@ const char* to_string(Strategy s);
 std::optional<Strategy> parse_strategy(const std::string& s);
 // combined where the scene has both lights and probes, else whichever it has.
 Strategy default_strategy(const Scene& scene);
-// Throws InputError when the scene lacks what the strategy needs.
+// Throws InputError when the scene lacks what the strategy needs, or when
+// what it lights the scene with gives no light at all (every light black or
+// disabled and the background black; for 'probe', every probe image black):
+// the photo would be divided by zero, or by the little light that is left.
 void check_strategy(const Scene& scene, Strategy strategy);
 
 // The scene's environment as the strategy models it: the background, or the

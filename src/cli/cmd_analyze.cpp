@@ -6,8 +6,10 @@
 #include <filesystem>
 #include <vector>
 
+#include "analysis/view_checks.h"
 #include "cli/commands.h"
 #include "core/error.h"
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 
 namespace relight::cli {
@@ -73,7 +75,8 @@ void add_analyze_command(CLI::App& app, Action& action) {
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
       const auto start = std::chrono::steady_clock::now();
-      LoadedScene s = load_for_rendering(args->scene, args->options);
+      LoadedScene s = load_for_rendering(args->scene, args->options, progress);
+      warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
       AnalysisOptions options = args->options;
       options.strategy = args->strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args->strategy);
       options.interreflection = args->interreflection == "on";
@@ -84,9 +87,11 @@ void add_analyze_command(CLI::App& app, Action& action) {
       const auto keep = [&](int, const AlbedoImages& albedo) { renders.push_back(albedo.albedo_coverage); };
       const Analysis analysis =
           analyze(s.scene, *s.rays, *s.gbuffer, options, progress, args->save_renders ? AlbedoObserver(keep) : nullptr);
+      OutputBatch folder;  // the renders appear with the analysis
       save_analysis(args->out, analysis, s.scene);
       for (size_t i = 0; i < renders.size(); ++i)
         write_exr(fs::path(args->out) / ("albedo_render" + std::to_string(i + 1) + ".exr"), renders[i]);
+      folder.commit();
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const std::string sampling = options.method == AnalysisMethod::path
                                        ? std::to_string(options.paths_per_pixel) + " spp"

@@ -9,6 +9,7 @@
 #include "io/atomic_file.h"
 #include "io/fspy.h"
 #include "io/json_reader.h"
+#include "io/output_guard.h"
 #include "io/scene_io.h"
 
 namespace relight::cli {
@@ -19,6 +20,7 @@ namespace {
 void update_scene_camera(const std::string& scene_path, const nlohmann::json& camera) {
   nlohmann::json scene = JsonReader::parse_file(scene_path);
   JsonReader(scene_path).expect_object(scene, "");
+  allow_replacing_input(scene_path);  // rewriting it is what --scene is for
   scene["camera"] = camera;
   write_text_atomically(scene_path, scene.dump(2) + "\n");
 }

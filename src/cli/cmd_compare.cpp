@@ -1,6 +1,7 @@
 // relight compare: PSNR of an image against a reference, the measure the
 // project reports (albedo on the mask, clipped to [0,1]; re-lit images
 // tone-mapped x/(1+x) and sRGB-encoded).
+#include <algorithm>
 #include <cstdio>
 
 #include "cli/commands.h"
@@ -35,6 +36,9 @@ void add_compare_command(CLI::App& app, Action& action) {
         int w, h;
         mask = read_scalar_image(args->mask, w, h);
         if (w != test.width || h != test.height) throw InputError(args->mask, "", "differs in size from the images");
+        // PSNR over no pixel is no figure (it would print as 0 dB).
+        if (std::none_of(mask.begin(), mask.end(), [](float m) { return m > 0.0f; }))
+          throw InputError(args->mask, "", "the mask selects no pixel (every value is 0): nothing to compare");
         test = clip01(test);
         reference = clip01(reference);
       }

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "analysis/fit.h"
+#include "analysis/view_checks.h"
 #include "cli/commands.h"
 #include "io/atomic_file.h"
 #include "io/scene_io.h"
@@ -16,7 +17,7 @@ void add_fit_command(CLI::App& app, Action& action) {
   struct Args {
     std::string scene, out;
     AnalysisOptions options;
-    bool refine_placement = false;
+    bool refine_placement = false, register_camera = false;
   };
   auto args = std::make_shared<Args>();
   args->options.paths_per_pixel = FitOptions{}.paths_per_pixel;
@@ -26,6 +27,8 @@ void add_fit_command(CLI::App& app, Action& action) {
       ->required();
   cmd->add_flag("--refine-placement", args->refine_placement,
                 "then move and turn each light (a point: move; the sun: turn) to where its shadows fall in the photo");
+  cmd->add_flag("--register", args->register_camera,
+                "first register the camera to the photo's edges, as relight register does (default limits)");
   add_sampling_options(*cmd, args->options);
   cmd->footer(help_footer(
       "Lights a probe sees get the power the probe measures; the background and the other lights are fitted so\n"
@@ -37,7 +40,12 @@ void add_fit_command(CLI::App& app, Action& action) {
         "also correct the lights' positions and directions from the shadows"}}));
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
-      LoadedScene s = load_for_rendering(args->scene, args->options);
+      LoadedScene s = load_for_rendering(args->scene, args->options, progress);
+      if (args->register_camera) {
+        register_and_report(s.scene, *s.rays, RegistrationOptions{}, progress);
+        s.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s.scene, *s.rays, args->options));
+      }
+      warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
       FitOptions options;
       options.paths_per_pixel = args->options.paths_per_pixel;
       options.seed = args->options.seed;

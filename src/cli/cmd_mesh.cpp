@@ -94,10 +94,10 @@ void add_mesh_command(CLI::App& app, Action& action) {
        {"relight mesh scene.json -o out/mesh --albedo-gt albedo_gt.exr --mask mask.exr",
         "also reports how many shadow-edge pixels lie near a mesh edge"}}));
   cmd->callback([&action, args] {
-    action = [args](Progress&) {
+    action = [args](Progress& progress) {
       args->options.subdivision.criterion = kCriteria.at(args->criterion);
       args->options.relax.flip_test = kFlipTests.at(args->flip_test);
-      const Scene scene = load_scene(args->scene);
+      const Scene scene = load_scene(args->scene, progress);
       const RayScene rays(scene.mesh);
       const GBuffer gbuffer(scene.camera, rays, 1, 1, args->scene);
       const PhotoSamples photo = photo_samples(scene.photo, gbuffer);
@@ -133,9 +133,11 @@ void add_mesh_command(CLI::App& app, Action& action) {
       std::error_code ec;
       fs::create_directories(out, ec);
       if (!fs::is_directory(out)) throw InputError(out.string(), "", "cannot create the output folder");
+      OutputBatch outputs;
       save_obj(out / "mesh.obj", mesh.to_triangle_mesh());
       write_png(out / "mesh.png", draw_edges_over_photo(scene.photo, edges));
       write_text_atomically(out / "mesh.json", j.dump(2) + "\n");
+      outputs.commit();
       std::printf("mesh: %zu triangles in view -> %zu (%zu edges split, %zu vertices moved) in %.3f s, written to %s\n",
                   report.triangles_clipped, mesh.triangles().size(), report.subdivision.edges_split,
                   report.relax.vertices_moved, report.seconds, args->out.c_str());

@@ -127,6 +127,7 @@ void add_preview_command(CLI::App& app, Action& action) {
           throw InputError("--size", "", "expected WIDTHxHEIGHT, e.g. 1280x720, got '" + args->size + "'");
         options.width = std::stoi(m[1]);
         options.height = std::stoi(m[2]);
+        expect_within_pixel_limit("--size", "a view", options.width, options.height);
       }
       options.final_render.paths_per_pixel = args->options.paths_per_pixel;
       options.final_render.max_bounces = args->options.max_bounces;
@@ -166,6 +167,7 @@ void add_preview_command(CLI::App& app, Action& action) {
         std::snprintf(name, sizeof name, "frame_%04d", i);
         return std::string(name);
       };
+      OutputBatch outputs;
       write_frame(out, frame_name(0), *first.image);
       if (args->frames > 1) write_frame(out, frame_name(args->frames - 1), *last.image);
       write_frame(out, "converged", *converged.image);
@@ -180,6 +182,7 @@ void add_preview_command(CLI::App& app, Action& action) {
       timing["light"] = {{"name", start.name}, {"type", to_string(start.type)}, {"radius_m", radius}};
       timing["lights"] = rig.lights.size();
       write_text_atomically(out / "timing.json", timing.dump(2) + "\n");
+      outputs.commit();
       std::printf("%d frames: median %.1f ms, p95 %.1f ms; converged %.0f ms after the last; written to %s\n",
                   args->frames, double(timing["median_frame_ms"]), double(timing["p95_frame_ms"]), converge_ms,
                   out.c_str());

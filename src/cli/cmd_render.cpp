@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
 #include "relight/render_rig.h"
@@ -49,10 +50,12 @@ void add_render_command(CLI::App& app, Action& action) {
       render_options.paths_per_pixel = args->options.paths_per_pixel;
       render_options.max_bounces = args->options.max_bounces;
       const Image image = render_rig(s.scene, *s.rays, *s.gbuffer, analysis, rig, render_options, progress);
-      write_exr(out, image);
       fs::path png = out;
       png.replace_extension(".png");
+      OutputBatch pair;  // the EXR and the PNG appear together
+      write_exr(out, image);
       write_png(png, image, args->exposure);
+      pair.commit();
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::printf("re-lit image written to %s and %s in %.1f s\n", out.c_str(), png.c_str(), secs);
     };

@@ -20,8 +20,8 @@ void add_rig_command(CLI::App& app, Action& action) {
       "  lighting design; rendering it unchanged gives back the photo.",
       {{"relight rig scene.json -o my_rig.json", "my_rig.json with the scene's lights, to edit"}}));
   cmd->callback([&action, args] {
-    action = [args](Progress&) {
-      save_rig(args->out, rig_from_scene(load_scene(args->scene)));
+    action = [args](Progress& progress) {
+      save_rig(args->out, rig_from_scene(load_scene(args->scene, progress)));
       std::printf("rig written to %s\n", args->out.c_str());
     };
   });

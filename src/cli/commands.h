@@ -11,6 +11,7 @@
 #include <string>
 
 #include "analysis/analyze.h"
+#include "analysis/camera_registration.h"
 #include "core/progress.h"
 #include "render/ray_scene.h"
 
@@ -27,6 +28,9 @@ void add_preview_command(CLI::App& app, Action& action);
 void add_fit_command(CLI::App& app, Action& action);
 void add_mesh_command(CLI::App& app, Action& action);
 void add_camera_from_fspy_command(CLI::App& app, Action& action);
+void add_register_command(CLI::App& app, Action& action);
+void add_hdr_merge_command(CLI::App& app, Action& action);
+void add_probe_from_photo_command(CLI::App& app, Action& action);
 
 // A loaded scene with its ray-tracing structure and G-buffer.
 struct LoadedScene {
@@ -34,7 +38,9 @@ struct LoadedScene {
   std::unique_ptr<RayScene> rays;
   std::unique_ptr<GBuffer> gbuffer;
 };
-LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options);
+LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options, const Progress& progress);
+// The same for a scene already loaded from scene_path.
+LoadedScene prepare_for_rendering(Scene scene, const std::string& scene_path, const AnalysisOptions& options);
 
 // A scene loaded for rendering with its analysis: read from analysis_folder
 // (whose seed and sub-pixel samples then make the G-buffer) or, where that
@@ -48,6 +54,11 @@ struct AnalysedScene {
 
   Analysis analysis;
   LoadedScene loaded;
+
+ private:
+  // The scene is read once: the analysis is checked against it, then it is rendered.
+  AnalysedScene(Scene scene, const std::string& scene_path, const std::string& analysis_folder, AnalysisOptions options,
+                Progress& progress);
 };
 
 // A man-page style --help footer: DESCRIPTION, EXAMPLES (each a command line
@@ -57,6 +68,11 @@ struct HelpExample {
   const char* effect;
 };
 std::string help_footer(const char* description, std::initializer_list<HelpExample> examples);
+
+// Registers the scene's camera to its photo (analysis/camera_registration.h)
+// and prints what moved and how much the edge mismatch fell.
+RegistrationResult register_and_report(Scene& scene, const RayScene& rays, const RegistrationOptions& options,
+                                       Progress& progress);
 
 // Options shared by analyze and render.
 void add_sampling_options(CLI::App& cmd, AnalysisOptions& options);

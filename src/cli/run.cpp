@@ -1,14 +1,19 @@
+#include <spdlog/pattern_formatter.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <string_view>
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/mesh_io.h"
+#include "io/output_guard.h"
+#include "io/scene_folder_reads.h"
 #include "io/scene_io.h"
 
 namespace relight::cli {
@@ -19,17 +24,48 @@ void on_interrupt(int) {
   if (g_progress) g_progress->cancel();
 }
 
-// An error is one line even where a library's message spans several.
-std::string one_line(std::string message) {
-  std::replace(message.begin(), message.end(), '\n', ' ');
-  std::replace(message.begin(), message.end(), '\r', ' ');
-  return message;
+// Text printed on the terminal holds names and keys from files (scene.json
+// is anyone's): line breaks and tabs become spaces, so that an error is one
+// line even where a library's message spans several, and every other control
+// character (the escape sequences that recolour, retitle or clear a terminal;
+// backspaces) is shown as \xHH, or \u00HH for a C1 control in UTF-8.
+std::string printable(std::string_view text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '\n' || c == '\r' || c == '\t') {
+      out += ' ';
+    } else if (c < 0x20 || c == 0x7f) {
+      out += fmt::format("\\x{:02x}", c);
+    } else if (c == 0xc2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) < 0xa0 &&
+               static_cast<unsigned char>(text[i + 1]) >= 0x80) {
+      out += fmt::format("\\u{:04x}", static_cast<unsigned char>(text[++i]));
+    } else {
+      out += char(c);
+    }
+  }
+  return out;
 }
+
+// The `%*` of the log pattern: the message, printable().
+class PrintableMessage : public spdlog::custom_flag_formatter {
+ public:
+  void format(const spdlog::details::log_msg& msg, const std::tm&, spdlog::memory_buf_t& dest) override {
+    const std::string text = printable(std::string_view(msg.payload.data(), msg.payload.size()));
+    dest.append(text.data(), text.data() + text.size());
+  }
+  std::unique_ptr<custom_flag_formatter> clone() const override { return std::make_unique<PrintableMessage>(); }
+};
 }  // namespace
 
-LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options) {
+LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options,
+                               const Progress& progress) {
+  return prepare_for_rendering(load_scene(scene_path, progress), scene_path, options);
+}
+
+LoadedScene prepare_for_rendering(Scene scene, const std::string& scene_path, const AnalysisOptions& options) {
   LoadedScene s;
-  s.scene = load_scene(scene_path);
+  s.scene = std::move(scene);
   spdlog::info("{}: photo {}x{}, {} triangles, {} lights, {} probes", scene_path, s.scene.photo.width,
                s.scene.photo.height, s.scene.mesh.triangles.size(), s.scene.lights.size(), s.scene.probes.size());
   s.rays = std::make_unique<RayScene>(s.scene.mesh);
@@ -81,6 +117,11 @@ int run(std::span<const std::string> args) {
   app.add_flag("--repair-mesh", repair_mesh,
                "drop the geometry's degenerate (zero-area) triangles with a warning instead of refusing it")
       ->envname("RELIGHT_REPAIR_MESH");
+  bool confine = false;
+  app.add_flag("--confine-to-scene-folder", confine,
+               "refuse a scene whose files (photo, geometry, probes, a glTF's buffers and images, an OBJ's mtllib) lie "
+               "outside the scene.json's folder, instead of warning; for scenes from others")
+      ->envname("RELIGHT_CONFINE_TO_SCENE_FOLDER");
   app.fallthrough();  // the global options may follow the subcommand
   Action action;
   add_analyze_command(app, action);
@@ -91,6 +132,16 @@ int run(std::span<const std::string> args) {
   add_fit_command(app, action);
   add_mesh_command(app, action);
   add_camera_from_fspy_command(app, action);
+  add_register_command(app, action);
+  add_hdr_merge_command(app, action);
+  add_probe_from_photo_command(app, action);
+  bool force = false;
+  for (const char* writer : {"analyze", "render", "rig", "preview", "fit", "mesh", "camera-from-fspy", "register",
+                             "hdr-merge", "probe-from-photo"})
+    app.get_subcommand(writer)->add_flag(
+        "--force", force,
+        "replace an output file that is read-only (keeping its mode); analyze: also write into a folder holding "
+        "images of its names but no analysis");
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 wants them reversed, without argv[0]
   try {
@@ -100,11 +151,15 @@ int run(std::span<const std::string> args) {
   }
   set_max_image_pixels(max_pixels);
   set_repair_meshes(repair_mesh);
+  set_force_outputs(force);
+  set_confine_to_scene_folder(confine);
   // Warnings go to stderr with the errors; stdout carries only the results.
   static const auto log_to_stderr =
       std::make_shared<spdlog::logger>("relight", std::make_shared<spdlog::sinks::stderr_color_sink_mt>());
   spdlog::set_default_logger(log_to_stderr);
-  spdlog::set_pattern("relight: %^%l%$: %v");
+  auto formatter = std::make_unique<spdlog::pattern_formatter>();
+  formatter->add_flag<PrintableMessage>('*').set_pattern("relight: %^%l%$: %*");
+  spdlog::set_formatter(std::move(formatter));
   spdlog::set_level(verbose ? spdlog::level::info : spdlog::level::warn);
 
   Progress progress;
@@ -114,16 +169,17 @@ int run(std::span<const std::string> args) {
     ~ForgetProgress() { g_progress = nullptr; }  // a later Ctrl-C must not reach a dead Progress
   } forget_progress;
   try {
+    const OutputGuard no_input_replaced;
     action(progress);
     return 0;
   } catch (const InputError& e) {
-    std::fprintf(stderr, "\nrelight: error: %s\n", one_line(e.what()).c_str());
+    std::fprintf(stderr, "\nrelight: error: %s\n", printable(e.what()).c_str());
     return 2;
   } catch (const Cancelled&) {
     std::fprintf(stderr, "\nrelight: cancelled; nothing was written\n");
     return 130;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "\nrelight: internal error: %s\n", e.what());
+    std::fprintf(stderr, "\nrelight: internal error: %s\n", printable(e.what()).c_str());
     return 1;
   }
 }

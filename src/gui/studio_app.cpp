@@ -6,6 +6,7 @@
 #include <QSlider>
 #include <QTimer>
 #include <cstdio>
+#include <string_view>
 
 #include "gui/main_window.h"
 #include "io/atomic_file.h"
@@ -44,44 +45,94 @@ void screenshot_when_converged(MainWindow& window, const QString& path) {
   });
 }
 
+// The command line, declared once for both the display-less --help/--version
+// and the real start.
+struct StudioCommandLine {
+  QCommandLineParser parser;
+  QCommandLineOption cpu{"cpu", "draw moving lights with CPU shadow rays, not OpenGL shadow maps"};
+  QCommandLineOption screenshot{"screenshot", "write the main form to FILE.png once converged, and quit", "FILE.png"};
+  QCommandLineOption size{"size", "window size WIDTHxHEIGHT", "WxH", "1500x900"};
+  QCommandLineOption split{"split", "before/after split, percent of the width showing the photo", "PERCENT", "0"};
+  QCommandLineOption repair{"repair-mesh",
+                            "drop the geometry's degenerate (zero-area) triangles instead of refusing it "
+                            "(or set RELIGHT_REPAIR_MESH=1)"};
+
+  StudioCommandLine() {
+    parser.setApplicationDescription("relight studio: design the lighting of a photo interactively.");
+    parser.addHelpOption();
+    parser.addVersionOption();
+    parser.addPositionalArgument("scene", "scene.json to open (analysed once, then cached next to it)", "[SCENE.json");
+    parser.addPositionalArgument("rig", "rig.json with the lights (default: the scene's own)", "[RIG.json]]");
+    parser.addOptions({cpu, screenshot, size, split, repair});
+  }
+};
+
+void name_application() {
+  QCoreApplication::setApplicationName("relight-studio");
+  QCoreApplication::setOrganizationName("relight");
+  QCoreApplication::setApplicationVersion(RELIGHT_VERSION);
+}
+
+// --help and --version answer without a display: QApplication would need a
+// window system (and abort without one) before the parser could print them.
+bool asks_for_help_or_version(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "--") return false;
+    if (arg == "-h" || arg == "--help" || arg == "-?" || arg == "--help-all" || arg == "-v" || arg == "--version")
+      return true;
+  }
+  return false;
+}
+
+// Qt aborts in QApplication's constructor where it finds no window system;
+// say so in one line instead. A platform chosen explicitly is left to Qt.
+bool has_window_system(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string_view(argv[i]) == "-platform") return true;
+  return !qEnvironmentVariableIsEmpty("DISPLAY") || !qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY") ||
+         !qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM");
+}
+
 }  // namespace
 
 int run_studio(int argc, char** argv) {
+  if (asks_for_help_or_version(argc, argv)) {
+    QCoreApplication app(argc, argv);
+    name_application();
+    StudioCommandLine command_line;
+    command_line.parser.process(app);  // prints and exits
+    return 0;
+  }
+  if (!has_window_system(argc, argv)) {
+    std::fprintf(stderr,
+                 "relight-studio: no display: DISPLAY and WAYLAND_DISPLAY are unset (QT_QPA_PLATFORM=offscreen "
+                 "runs without one)\n");
+    return 2;
+  }
   QApplication app(argc, argv);
-  QApplication::setApplicationName("relight-studio");
-  QApplication::setOrganizationName("relight");
-  QCommandLineParser parser;
-  parser.setApplicationDescription("relight studio: design the lighting of a photo interactively.");
-  parser.addHelpOption();
-  parser.addPositionalArgument("scene", "scene.json to open (analysed once, then cached next to it)", "[SCENE.json");
-  parser.addPositionalArgument("rig", "rig.json with the lights (default: the scene's own)", "[RIG.json]]");
-  const QCommandLineOption cpu("cpu", "draw moving lights with CPU shadow rays, not OpenGL shadow maps");
-  const QCommandLineOption screenshot("screenshot", "write the main form to FILE.png once converged, and quit",
-                                      "FILE.png");
-  const QCommandLineOption size("size", "window size WIDTHxHEIGHT", "WxH", "1500x900");
-  const QCommandLineOption split("split", "before/after split, percent of the width showing the photo", "PERCENT",
-                                 "0");
-  const QCommandLineOption repair("repair-mesh",
-                                  "drop the geometry's degenerate (zero-area) triangles instead of refusing it "
-                                  "(or set RELIGHT_REPAIR_MESH=1)");
-  parser.addOptions({cpu, screenshot, size, split, repair});
+  name_application();
+  StudioCommandLine options_given;
+  QCommandLineParser& parser = options_given.parser;
   parser.process(app);
   const QString repair_env = qEnvironmentVariable("RELIGHT_REPAIR_MESH");
-  set_repair_meshes(parser.isSet(repair) || (!repair_env.isEmpty() && repair_env != "0"));
+  set_repair_meshes(parser.isSet(options_given.repair) || (!repair_env.isEmpty() && repair_env != "0"));
   const QStringList files = parser.positionalArguments();
-  const QRegularExpressionMatch wxh = QRegularExpression("^(\\d{3,5})x(\\d{3,5})$").match(parser.value(size));
-  if (files.size() > 2 || !wxh.hasMatch() || (parser.isSet(screenshot) && files.isEmpty())) {
-    std::fprintf(stderr, "relight-studio: usage: relight-studio [--size WxH] [--screenshot FILE.png] "
-                         "[SCENE.json [RIG.json]] (--screenshot needs a scene)\n");
+  const QRegularExpressionMatch wxh =
+      QRegularExpression("^(\\d{3,5})x(\\d{3,5})$").match(parser.value(options_given.size));
+  if (files.size() > 2 || !wxh.hasMatch() || (parser.isSet(options_given.screenshot) && files.isEmpty())) {
+    std::fprintf(stderr,
+                 "relight-studio: usage: relight-studio [--size WxH] [--screenshot FILE.png] "
+                 "[SCENE.json [RIG.json]] (--screenshot needs a scene)\n");
     return 2;
   }
 
   StudioOptions options = default_studio_options();
-  if (parser.isSet(cpu)) options.session.backend = Backend::cpu;
+  if (parser.isSet(options_given.cpu)) options.session.backend = Backend::cpu;
   MainWindow window(options);
   window.resize(wxh.captured(1).toInt(), wxh.captured(2).toInt());
-  window.findChild<QSlider*>("split")->setValue(parser.value(split).toInt());
-  if (parser.isSet(screenshot)) screenshot_when_converged(window, parser.value(screenshot));
+  window.findChild<QSlider*>("split")->setValue(parser.value(options_given.split).toInt());
+  if (parser.isSet(options_given.screenshot)) screenshot_when_converged(window, parser.value(options_given.screenshot));
   window.show();
   if (!files.isEmpty()) window.open_scene(files[0], files.size() > 1 ? files[1] : QString());
   return QApplication::exec();

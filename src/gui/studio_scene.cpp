@@ -17,7 +17,7 @@ fs::path analysis_cache_folder(const fs::path& scene_path) {
 std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const AnalysisOptions& options,
                                                Progress& progress) {
   auto s = std::make_unique<StudioScene>();
-  s->scene = load_scene(scene_path);
+  s->scene = load_scene(scene_path, progress);
   s->rays = std::make_unique<RayScene>(s->scene.mesh);
   const fs::path cache = analysis_cache_folder(scene_path);
   try {

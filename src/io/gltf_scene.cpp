@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -232,6 +233,43 @@ GltfCamerasAndLights read_gltf_cameras_and_lights(const fs::path& path) {
       stack.emplace_back(index(children[k], json_child(ptr + "/children", k), nodes, "node"), world);
   }
   return out;
+}
+
+namespace {
+
+// "%2e%2e%2f" is "../": a URI's path is read decoded.
+std::string percent_decoded(const std::string& uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit((unsigned char)uri[i + 1]) &&
+        std::isxdigit((unsigned char)uri[i + 2])) {
+      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> gltf_file_uris(const fs::path& path) {
+  const json root = read_gltf_json(path);
+  std::vector<std::pair<std::string, std::string>> uris;
+  if (!root.is_object()) return uris;
+  for (const char* kind : {"buffers", "images"}) {
+    const auto list = root.find(kind);
+    if (list == root.end() || !list->is_array()) continue;
+    for (size_t i = 0; i < list->size(); ++i) {
+      const json& item = (*list)[i];
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = item["uri"];
+      if (uri.rfind("data:", 0) == 0) continue;
+      uris.emplace_back(json_child(json_child(std::string("/") + kind, i), "uri"), percent_decoded(uri));
+    }
+  }
+  return uris;
 }
 
 CameraSpec find_gltf_camera(const fs::path& path, const GltfCamerasAndLights& contents, const std::string& name) {

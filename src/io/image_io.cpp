@@ -1,8 +1,8 @@
 #include "io/image_io.h"
 
+#include <OpenImageIO/imageio.h>
 #include <spdlog/spdlog.h>
 
-#include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -48,16 +48,13 @@ RawImage read_raw(const fs::path& path, const std::function<std::pair<int, int>(
   raw.width = raw.spec.width;
   raw.height = raw.spec.height;
   if (raw.width <= 0 || raw.height <= 0 || raw.spec.nchannels <= 0)
-    throw InputError(name, "", fmt::format("the image is empty ({}x{} pixels, {} channels)", raw.width, raw.height,
-                                           raw.spec.nchannels));
-  const int64_t pixels = int64_t(raw.width) * raw.height;
-  if (pixels > max_image_pixels())
-    throw InputError(name, "", fmt::format("image of {}x{} ({:.1f} Mpixel) is over the limit of {:.1f} Mpixel "
-                                           "(raise it with --max-pixels or RELIGHT_MAX_PIXELS)",
-                                           raw.width, raw.height, pixels * 1e-6, max_image_pixels() * 1e-6));
+    throw InputError(
+        name, "",
+        fmt::format("the image is empty ({}x{} pixels, {} channels)", raw.width, raw.height, raw.spec.nchannels));
+  expect_within_pixel_limit(name, "image", raw.width, raw.height);
   const auto [first, last] = pick_channels(raw.spec);
   raw.channels = last - first;
-  raw.data.resize(size_t(pixels) * raw.channels);
+  raw.data.resize(size_t(raw.width) * raw.height * raw.channels);
   if (!in->read_image(0, 0, first, last, TypeDesc::FLOAT, raw.data.data()))
     throw InputError(name, "", "corrupt or truncated image (" + first_line(in->geterror()) + ")");
   for (size_t i = 0; i < raw.data.size(); ++i) {
@@ -107,12 +104,25 @@ void write_pixels(const fs::path& path, const ImageSpec& spec, const void* data,
 int64_t max_image_pixels() { return g_max_pixels.load(); }
 void set_max_image_pixels(int64_t pixels) { g_max_pixels.store(pixels); }
 
+bool is_black(const Image& image) {
+  return std::all_of(image.pixels.begin(), image.pixels.end(), [](const Vec3& p) { return p.isZero(); });
+}
+
+void expect_within_pixel_limit(const std::string& name, const char* what, int64_t width, int64_t height) {
+  const int64_t pixels = width * height;
+  if (pixels > max_image_pixels())
+    throw InputError(name, "",
+                     fmt::format("{} of {}x{} ({:.1f} Mpixel) is over the limit of {:.1f} Mpixel "
+                                 "(raise it with --max-pixels or RELIGHT_MAX_PIXELS)",
+                                 what, width, height, pixels * 1e-6, max_image_pixels() * 1e-6));
+}
+
 Image read_image(const fs::path& path) {
   RawImage raw = read_raw(path, [](const ImageSpec& spec) { return std::pair(0, spec.nchannels >= 3 ? 3 : 1); });
   clamp_negative_noise(path, raw);
   const bool ldr = is_low_dynamic_range(raw.spec);
-  if (ldr) spdlog::warn("{}: 8/16-bit image taken as sRGB-encoded and linearised; an HDR photo is better",
-                        path.string());
+  if (ldr)
+    spdlog::warn("{}: 8/16-bit image taken as sRGB-encoded and linearised; an HDR photo is better", path.string());
   Image img(raw.width, raw.height);
   for (size_t p = 0; p < img.size(); ++p) {
     const float* px = &raw.data[p * raw.channels];
@@ -120,6 +130,24 @@ Image read_image(const fs::path& path) {
     if (ldr) c = Vec3(srgb_decode(c.x()), srgb_decode(c.y()), srgb_decode(c.z()));
     img.pixels[p] = c;
   }
+  return img;
+}
+
+EncodedImage read_encoded_image(const fs::path& path) {
+  const RawImage raw = read_raw(path, [](const ImageSpec& spec) { return std::pair(0, spec.nchannels >= 3 ? 3 : 1); });
+  if (!is_low_dynamic_range(raw.spec))
+    throw InputError(path.string(), "",
+                     "is a floating-point (HDR) image; brackets are the camera's 8/16-bit images (JPEG, PNG, TIFF)");
+  EncodedImage img;
+  img.width = raw.width;
+  img.height = raw.height;
+  img.rgb.resize(size_t(raw.width) * raw.height * 3);
+  for (size_t p = 0; p < size_t(raw.width) * raw.height; ++p)
+    for (int c = 0; c < 3; ++c) {
+      const float v = raw.data[p * raw.channels + (raw.channels == 3 ? c : 0)];  // OIIO: [0,1]
+      img.rgb[p * 3 + c] = uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    }
+  img.exposure_time = raw.spec.get_float_attribute("ExposureTime", 0.0f);
   return img;
 }
 

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "core/image.h"
@@ -17,6 +18,12 @@ namespace relight {
 inline constexpr int64_t kDefaultMaxImagePixels = 25'000'000;
 int64_t max_image_pixels();
 void set_max_image_pixels(int64_t pixels);
+// Throws InputError naming `name` where width x height is over
+// max_image_pixels(); `what` says what it is ("image", "view").
+void expect_within_pixel_limit(const std::string& name, const char* what, int64_t width, int64_t height);
+
+// Every pixel 0 (a probe that measured no light).
+bool is_black(const Image& image);
 
 // No radiance comes near this (the sun is ~1e9 W/(m^2 sr)); larger values
 // are corrupt data and would overflow float sums in the renderer.
@@ -28,6 +35,16 @@ inline constexpr float kMaxPixelValue = 1.0e20f;
 // warning). 8/16-bit formats are taken as sRGB-encoded and linearised, with a
 // warning.
 Image read_image(const std::filesystem::path& path);
+
+// An 8-bit camera image as stored (the camera's tone curve not undone), for
+// merging brackets: RGB codes 0-255, and the exposure time (s) from its EXIF
+// ExposureTime, 0 where the file has none. 16-bit files are rounded to 8 bits.
+struct EncodedImage {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgb;  // 3 per pixel, row 0 at the top
+  float exposure_time = 0.0f;
+};
+EncodedImage read_encoded_image(const std::filesystem::path& path);
 
 // Reads one channel (the first, or the one named Y/A if present) as a scalar
 // image, e.g. a mask.

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "io/output_guard.h"
 
 namespace relight {
 
@@ -17,6 +18,7 @@ void expect_input_file(const fs::path& path, const char* expected) {
   if (status.type() == fs::file_type::directory) throw InputError(name, "", std::string("is a folder, expected ") + expected);
   if (status.type() != fs::file_type::regular)
     throw InputError(name, "", std::string("is not a regular file (a device or a pipe?), expected ") + expected);
+  note_input_file(path);
 }
 
 }  // namespace relight

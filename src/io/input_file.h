@@ -8,7 +8,8 @@
 namespace relight {
 
 // Throws InputError unless `path` is an existing regular file; `expected`
-// names what it should be ("an image file").
+// names what it should be ("an image file"). Notes the file as an input of
+// the command (io/output_guard.h), so that no output replaces it.
 void expect_input_file(const std::filesystem::path& path, const char* expected);
 
 }  // namespace relight

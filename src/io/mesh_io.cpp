@@ -321,17 +321,25 @@ TriangleMesh decode_reading(const std::string& name, std::string_view in) {
 
 }  // namespace
 
-TriangleMesh load_mesh(const fs::path& path) {
+uint64_t mesh_reader_memory_limit(uint64_t file_bytes) { return (uint64_t(1) << 30) + 64 * file_bytes; }
+
+TriangleMesh load_mesh(const fs::path& path, const Progress& progress) {
   const std::string name = path.string();
   expect_input_file(path, "a mesh file");
   expect_sound_ply_header(path);
-  // Assimp's readers crash or hang on some malformed files (several found
-  // by fuzzing, in PLY, OFF and STL); reading in a child process turns those
-  // into an error about the file. 20 s plus 2 s per megabyte is far beyond
-  // what a sound file takes (a 1M-triangle OBJ reads in a few seconds), and
-  // under the fuzzers' 30 s limit for one input.
-  const auto limit = std::chrono::seconds(20 + 2 * (fs::file_size(path) >> 20));
-  const ChildResult read = run_in_child([&] { return encode_reading(path); }, limit);
+  // Assimp's readers crash, hang or reserve memory for what a header claims
+  // on some malformed files (several found by fuzzing, in PLY, OFF and STL);
+  // reading in a child process turns those into an error about the file.
+  // 20 s plus 2 s per megabyte is far beyond what a sound file takes (a
+  // 1M-triangle OBJ reads in a few seconds), and under the fuzzers' 30 s
+  // limit for one input.
+  const uintmax_t bytes = fs::file_size(path);
+  ChildLimits limits;
+  limits.time = std::chrono::seconds(20 + 2 * (bytes >> 20));
+  limits.memory_bytes = mesh_reader_memory_limit(bytes);
+  const ChildResult read =
+      run_in_child([&] { return encode_reading(path); }, limits, [&] { return progress.cancelled(); });
+  if (read.cancelled) throw Cancelled();
   if (!read.ok)
     throw InputError(name, "", "the mesh reader " + read.failure +
                                    " on this file: it is malformed, or export it again (OBJ is the safest)");

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "core/progress.h"
 #include "scene/triangle_mesh.h"
 
 namespace relight {
@@ -17,7 +18,16 @@ namespace relight {
 // Non-manifold edges (three or more triangles on one) get a warning: the
 // ray tracer needs no closed solids (surfaces are two-sided), and real
 // scenes have them (the reference bookcase's shelves meet its sides so).
-TriangleMesh load_mesh(const std::filesystem::path& path);
+// The file is read in a child process bounded in time and memory
+// (mesh_reader_memory_limit); throws Cancelled, the child killed, as soon as
+// `progress` is cancelled (a Ctrl-C) while it reads.
+TriangleMesh load_mesh(const std::filesystem::path& path, const Progress& progress = Progress::silent());
+
+// The address space the mesh reader may take for a file of `file_bytes`:
+// 1 GiB plus 64 bytes per byte of the file. A sound file needs far less
+// (docs/reliability.md gives the figures); a header claiming millions of
+// elements in a few bytes runs into it at once.
+uint64_t mesh_reader_memory_limit(uint64_t file_bytes);
 
 // Whether load_mesh drops degenerate triangles instead of refusing the mesh
 // (the CLI's --repair-mesh or RELIGHT_REPAIR_MESH). Off by default.

@@ -10,6 +10,7 @@
 #include "io/image_io.h"
 #include "io/json_reader.h"
 #include "io/mesh_io.h"
+#include "io/scene_folder_reads.h"
 
 namespace relight {
 
@@ -44,6 +45,8 @@ Light parse_light(const JsonReader& r, const json& v, const std::string& ptr, si
   if (auto* n = r.optional(v, "name")) light.name = r.string(*n, key("name"));
   if (auto* c = r.optional(v, "color")) light.color = r.color(*c, key("color"));
   if (auto* e = r.optional(v, "enabled")) light.enabled = r.boolean(*e, key("enabled"));
+  if (light.enabled && light.color.isZero())
+    spdlog::warn("{}: {}: the colour is black ([0, 0, 0]): the light lights nothing", r.file(), key("color"));
 
   switch (light.type) {
     case LightType::point:
@@ -152,6 +155,7 @@ Probe parse_probe(const JsonReader& r, const json& v, const std::string& ptr, co
   r.expect_object(v, ptr);
   Probe p;
   p.path = resolve(scene_path, r.string(r.required(v, ptr, "image"), ptr + "/image")).string();
+  check_read_inside(scene_path.parent_path(), scene_path, ptr + "/image", p.path);
   const std::string mapping = r.string(r.required(v, ptr, "mapping"), ptr + "/mapping");
   if (mapping == "equirect") p.mapping = ProbeMapping::equirect;
   else if (mapping == "mirrorball") p.mapping = ProbeMapping::mirrorball;
@@ -162,6 +166,7 @@ Probe parse_probe(const JsonReader& r, const json& v, const std::string& ptr, co
   if (p.forward.cross(p.up).norm() < 1e-4f) r.fail(ptr + "/up", "must not be parallel to forward");
   r.warn_unknown_keys(v, ptr, {"image", "mapping", "position", "forward", "up"});
   p.image = read_image(p.path);
+  if (is_black(p.image)) spdlog::warn("{}: the probe image is black everywhere: it measured no light", p.path);
   const int w = p.image.width, h = p.image.height;
   if (p.mapping == ProbeMapping::equirect && w != 2 * h)
     throw InputError(p.path, "", fmt::format("an equirect probe must be twice as wide as high, found {}x{}", w, h));
@@ -215,7 +220,7 @@ nlohmann::json camera_to_json(const CameraSpec& c) {
   return j;
 }
 
-Scene load_scene(const fs::path& path) {
+Scene load_scene(const fs::path& path, const Progress& progress) {
   const JsonReader r(path.string());
   const json root = JsonReader::parse_file(path);
   expect_format(r, root, "relight-scene/1");
@@ -225,6 +230,8 @@ Scene load_scene(const fs::path& path) {
   scene.path = path;
   scene.photo_path = resolve(path, r.string(r.required(root, "", "photo"), "/photo"));
   scene.geometry_path = resolve(path, r.string(r.required(root, "", "geometry"), "/geometry"));
+  check_read_inside(path.parent_path(), path, "/photo", scene.photo_path);
+  check_read_inside(path.parent_path(), path, "/geometry", scene.geometry_path);
   // Validate all the JSON (and a glTF's cameras and lights) before the slow file loads.
   GeometryContents geometry(r, scene.geometry_path);
   const CameraSpec camera = parse_camera(r, r.required(root, "", "camera"), geometry);
@@ -244,9 +251,10 @@ Scene load_scene(const fs::path& path) {
     for (size_t i = 0; i < probes->size(); ++i) probe_specs.emplace_back(&(*probes)[i], json_child("/probes", i));
   }
 
+  check_mesh_references_inside(path.parent_path(), scene.geometry_path);
   scene.photo = read_image(scene.photo_path);
   scene.camera = Camera(camera, scene.photo.width, scene.photo.height);
-  scene.mesh = load_mesh(scene.geometry_path);
+  scene.mesh = load_mesh(scene.geometry_path, progress);
   for (const auto& [spec, ptr] : probe_specs) scene.probes.push_back(parse_probe(r, *spec, ptr, path));
   return scene;
 }

@@ -6,13 +6,15 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/progress.h"
 #include "scene/scene.h"
 
 namespace relight {
 
 // Reads scene.json with its photo, geometry and probes. Throws InputError
-// naming the file, the JSON pointer and what was expected.
-Scene load_scene(const std::filesystem::path& path);
+// naming the file, the JSON pointer and what was expected; Cancelled where
+// `progress` is cancelled while the geometry is read.
+Scene load_scene(const std::filesystem::path& path, const Progress& progress = Progress::silent());
 
 Rig load_rig(const std::filesystem::path& path);
 

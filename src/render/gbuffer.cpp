@@ -36,15 +36,15 @@ GBuffer::GBuffer(const Camera& camera, const RayScene& scene, int samples_per_pi
     throw InputError(scene_file, "/camera", "the camera sees no geometry: check position, look_at and the mesh");
 }
 
-bool on_same_surface(const SurfacePoint& a, const SurfacePoint& b) {
-  if (a.prim == b.prim) return true;
-  return a.geometric_normal.dot(b.geometric_normal) > 0.9f && std::abs(a.distance - b.distance) < 0.03f * a.distance;
-}
-
 bool GBuffer::same_surface(int x, int y, int nx, int ny) const {
   const GBufferSample& a = central(x, y);
   const GBufferSample& b = central(nx, ny);
-  return a.hit && b.hit && on_same_surface(a.surface, b.surface);
+  return a.hit && b.hit && same_surface(a.surface, b.surface);
+}
+
+bool GBuffer::same_surface(const SurfacePoint& a, const SurfacePoint& b) {
+  if (a.prim == b.prim) return true;
+  return a.geometric_normal.dot(b.geometric_normal) > 0.9f && std::abs(a.distance - b.distance) < 0.03f * a.distance;
 }
 
 bool GBuffer::one_surface(int x, int y) const {
@@ -52,7 +52,7 @@ bool GBuffer::one_surface(int x, int y) const {
   if (!c.hit) return false;
   for (int k = 0; k < spp_; ++k) {
     const GBufferSample& s = sample(x, y, k);
-    if (!s.hit || !on_same_surface(c.surface, s.surface)) return false;
+    if (!s.hit || !same_surface(c.surface, s.surface)) return false;
   }
   return true;
 }

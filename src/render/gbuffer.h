@@ -17,11 +17,6 @@ struct GBufferSample {
   bool hit = false;
 };
 
-// Whether two points seen from one viewpoint are on the same surface: the
-// same triangle, or a similar normal (within ~25 degrees) at a similar
-// distance (within 3 %).
-bool on_same_surface(const SurfacePoint& a, const SurfacePoint& b);
-
 class GBuffer {
  public:
   // Traces samples_per_pixel camera rays per pixel (rounded to a square
@@ -44,6 +39,9 @@ class GBuffer {
   // Whether two pixels see the same surface: the same triangle, or a similar
   // normal (within ~25 degrees) at a similar depth (within 3 %).
   bool same_surface(int x, int y, int nx, int ny) const;
+  // The same test on two surface points (both hit).
+  static bool same_surface(const SurfacePoint& a, const SurfacePoint& b);
+
   // Whether every sample of the pixel sees the surface its centre-most
   // sample sees (no silhouette, crease or background within it).
   bool one_surface(int x, int y) const;

@@ -3,12 +3,17 @@
 # the exported scene comes back into Blender as the same lights.
 # The albedo relight recovered in ANALYSIS (from the Cycles-rendered photo) must
 # be the colours the materials were given.
-# Last, a world lit by an HDRI exports as an equirect probe that relight loads.
+# A rig with environment_scale and colours typed both ways comes into Blender as
+# written. The exporter refuses what relight would: a photo of another shape, no
+# photo, nothing visible to be geometry, writing nothing. Last, a world lit by an
+# HDRI exports as an equirect probe that relight loads (its orientation is
+# proven on rendered scenes by light_frames.py).
 #   blender -b SCENE.blend --python-exit-code 1 --python check_export.py -- EXPORTER OUTDIR RIG ANALYSIS RELIGHT
 import importlib.util
-import subprocess
 import json
 import math
+import os
+import subprocess
 import sys
 
 import bpy
@@ -96,7 +101,85 @@ for obj in made:
         near(again[key], value, 1e-3)
 print("check_export: camera, 4 lights, world and geometry as set; rig round trip exact")
 
-# An HDRI world (a generated equirect image, packed): exported as a probe facing -X, Z up, at the camera.
+# Everything a rig holds: environment_scale scales the world (from its strength before any rig,
+# so a second rig does not compound), "#rrggbb" is sRGB, [r, g, b] linear, enabled false hides.
+typed = {"format": "relight-rig/1", "environment_scale": 0.25, "lights": [
+    {"name": "warm", "type": "point", "position": [1, 2, 3], "power": 80, "color": "#ff8000", "radius": 0.2},
+    {"name": "off", "type": "directional", "direction": [0, 0, -1], "irradiance": 2, "color": [0.5, 0.25, 1],
+     "enabled": False}]}
+with open(outdir + "/typed.json", "w") as f:
+    json.dump(typed, f)
+background = bpy.context.scene.world.node_tree.nodes["Background"].inputs["Strength"]
+strength = background.default_value
+for _ in range(2):
+    warm, off = relight_export.import_rig(outdir + "/typed.json", replace=True)
+near(background.default_value, 0.25 * strength)
+near(list(warm.data.color), [1.0, ((128 / 255 + 0.055) / 1.055) ** 2.4, 0.0])
+near(list(off.data.color), [0.5, 0.25, 1.0])
+assert (warm.name, warm.hide_render, off.name, off.hide_render) == ("warm", False, "off", True)
+near(list(warm.location), [1.0, 2.0, 3.0])
+near([warm.data.energy, warm.data.shadow_soft_size, off.data.energy], [80.0, 0.2, 2.0])
+background.default_value = strength
+# In a scene modelled in centimetres the rig's metres become 100 units, and the power what lights
+# a surface so many units away as the rig's lamp does at so many metres; exported, the same again.
+bpy.context.scene.unit_settings.scale_length = 0.01
+warm, _ = relight_export.import_rig(outdir + "/typed.json", replace=True)
+near(list(warm.location), [100.0, 200.0, 300.0])
+near([warm.data.energy / 1e4, warm.data.shadow_soft_size], [80.0, 20.0])
+again = relight_export.light_entry(warm, relight_export.metres_per_unit(bpy.context.scene))
+near(again["position"] + [again["power"], again["radius"]], typed["lights"][0]["position"] + [80.0, 0.2])
+bpy.context.scene.unit_settings.scale_length = 1.0
+background.default_value = strength
+# A rig with a bad entry changes nothing: the good light before it is not added either.
+with open(outdir + "/bad.json", "w") as f:
+    json.dump({"format": "relight-rig/1", "environment_scale": 0.5,
+               "lights": [typed["lights"][0], {"type": "spot", "position": [0, 0, 1], "power": 5}]}, f)
+before = sorted(o.name for o in bpy.context.scene.objects)
+try:
+    relight_export.import_rig(outdir + "/bad.json", replace=True)
+    raise AssertionError("a spot without its cone and direction imported")
+except relight_export.BridgeError as e:
+    assert "/lights/1: the spot light has no" in str(e), e
+assert sorted(o.name for o in bpy.context.scene.objects) == before
+near(background.default_value, strength)
+print("check_export: a rig's environment_scale, typed colours, switched-off lights and lengths (in a "
+      "centimetre scene too) imported as written")
+
+
+def refused(why, photo, expected):
+    """export_scene must raise a BridgeError saying `expected`, writing nothing."""
+    target = outdir + "/refused"
+    try:
+        relight_export.export_scene(bpy.context.scene, target, photo)
+    except relight_export.BridgeError as e:
+        assert expected in str(e), "%s: %s" % (why, e)
+        assert not os.path.exists(target), "%s: %s written anyway" % (why, os.listdir(target))
+        print("check_export: %s refused: %s" % (why, e))
+        return
+    raise AssertionError("%s: exported" % why)
+
+
+square = bpy.data.images.new("square", 64, 64, float_buffer=True)
+square.save_render(outdir + "/square.exr", scene=bpy.context.scene)
+refused("a square photo for a 320x240 render", outdir + "/square.exr", "not the aspect ratio")
+refused("no photo", None, "no photo")
+refused("a photo that is not there", outdir + "/none.exr", "does not exist")
+tree = bpy.context.scene.world.node_tree
+sky = tree.nodes.new("ShaderNodeTexSky")
+link = tree.links.new(sky.outputs["Color"], tree.nodes["Background"].inputs["Color"])
+refused("a world lit by a Sky Texture", outdir + "/" + scene["photo"], "TEX_SKY")
+tree.links.remove(link)
+tree.nodes.remove(sky)
+bpy.context.scene.render.pixel_aspect_x = 2.0
+refused("non-square pixels", outdir + "/" + scene["photo"], "square pixels")
+bpy.context.scene.render.pixel_aspect_x = 1.0
+for obj in bpy.context.scene.objects:
+    obj.hide_render = obj.type == 'MESH'
+refused("no mesh rendered", outdir + "/" + scene["photo"], "no visible mesh")
+for obj in bpy.context.scene.objects:
+    obj.hide_render = False
+
+# An HDRI world (a generated equirect image, packed): exported as a probe facing +X, Z up, at the camera.
 hdri = bpy.data.images.new("sky", 64, 32, float_buffer=True)
 hdri.pixels.foreach_set([0.5] * (64 * 32 * 4))
 hdri.pack()
@@ -108,7 +191,7 @@ scene_path = relight_export.export_scene(bpy.context.scene, outdir + "/hdri", ou
 with open(scene_path) as f:
     probes = json.load(f)["probes"]
 assert len(probes) == 1 and probes[0]["mapping"] == "equirect", probes
-near(probes[0]["forward"], [-1.0, 0.0, 0.0])
+near(probes[0]["forward"], [1.0, 0.0, 0.0])
 near(probes[0]["up"], [0.0, 0.0, 1.0])
 near(probes[0]["position"], camera["position"])
 loaded = subprocess.run([relight, "rig", scene_path, "-o", outdir + "/hdri/rig.json"], capture_output=True, text=True)

@@ -3,14 +3,18 @@
 # As an add-on (Edit > Preferences > Add-ons > Install..., this file):
 #   File > Export > relight scene (scene.json + geometry.obj)
 #   File > Import > relight rig (lights of a rig.json or scene.json)
-# From the command line:
-#   blender -b FILE.blend --python relight_export.py -- OUTDIR [--photo PHOTO]
-#   blender -b FILE.blend --python relight_export.py -- --import-rig RIG.json [--replace] [--save OUT.blend]
+# From the command line (exit 2 and one line on what is wrong with the scene or rig,
+# 1 on any other error):
+#   blender -b FILE.blend --python-exit-code 1 --python relight_export.py -- OUTDIR [--photo PHOTO]
+#   blender -b FILE.blend --python-exit-code 1 --python relight_export.py -- --import-rig RIG.json [--replace] [--save OUT.blend]
 #
 # Coordinates stay Blender's world frame (Z up): the OBJ is written without an
 # axis conversion, and the camera, lights and probe are given in the same
-# frame. Light units are Blender's own, which relight's scene format uses
-# unchanged (docs/formats.md). See docs/tutorial.md.
+# frame, in metres (the scene's Unit Scale applied). Light units are Blender's
+# own, which relight's scene format uses unchanged (docs/formats.md). Only what
+# Cycles renders is exported: hide_render objects and collections disabled for
+# rendering are left out of the geometry, and such lights are exported switched
+# off. See docs/tutorial.md.
 
 bl_info = {
     "name": "relight scene exporter",
@@ -20,11 +24,13 @@ bl_info = {
     "location": "File > Export > relight scene; File > Import > relight rig",
 }
 
+import array
 import json
 import math
 import os
 import shutil
 import sys
+import tempfile
 
 import bpy
 import mathutils
@@ -38,6 +44,13 @@ def _vec(v):
     return [round(float(x), 7) for x in v]
 
 
+def metres_per_unit(scene):
+    """What one Blender unit is in metres: the scene's Unit Scale (a scene modelled in
+    centimetres has 0.01). relight's scenes are in metres."""
+    units = scene.unit_settings
+    return units.scale_length if units.system != 'NONE' else 1.0
+
+
 def _axes(obj):
     """World position, and the object's -Z (where a camera or light points) and +Y, unit."""
     m = obj.matrix_world
@@ -47,7 +60,7 @@ def _axes(obj):
 
 # ------------------------------------------------------------------ export
 
-def camera_block(scene):
+def camera_block(scene, metres=1.0):
     cam = scene.camera
     if cam is None or cam.type != 'CAMERA':
         raise BridgeError("the scene has no active camera")
@@ -55,8 +68,10 @@ def camera_block(scene):
     if data.type != 'PERSP':
         raise BridgeError("the active camera '%s' is not a perspective camera" % cam.name)
     render = scene.render
-    width = render.resolution_x * render.pixel_aspect_x
-    height = render.resolution_y * render.pixel_aspect_y
+    if abs(render.pixel_aspect_x - render.pixel_aspect_y) > 1e-6 * render.pixel_aspect_x:
+        raise BridgeError("the render's pixel aspect is %g:%g; relight's photos have square pixels"
+                          % (render.pixel_aspect_x, render.pixel_aspect_y))
+    width, height = render.resolution_x, render.resolution_y
     # Blender's sensor fit: the sensor spans the width (horizontal) or the height (vertical);
     # AUTO fits the longer side with sensor_width.
     fit = data.sensor_fit
@@ -70,8 +85,8 @@ def camera_block(scene):
         tan_half *= height / width
     position, forward, up = _axes(cam)
     block = {
-        "position": _vec(position),
-        "look_at": _vec(position + forward),
+        "position": _vec(position * metres),
+        "look_at": _vec(position * metres + forward),
         "up": _vec(up),
         "vfov_deg": math.degrees(2.0 * math.atan(tan_half)),
     }
@@ -83,17 +98,19 @@ def camera_block(scene):
     return block, (render.resolution_x, render.resolution_y)
 
 
-def light_entry(obj):
+def light_entry(obj, metres=1.0):
+    """The light as relight's scene format has it; lengths in metres (`metres` per Blender unit).
+    Cycles takes lengths in Blender units, so a lamp lights a surface d units away as one of
+    power P at d metres would: in metres it has power P * metres^2 (a sun's irradiance stays)."""
     light = obj.data
     position, forward, up = _axes(obj)
-    scale = obj.matrix_world.to_scale()
+    position, power = position * metres, light.energy * metres ** 2
+    scale = obj.matrix_world.to_scale() * metres
     entry = {"name": obj.name, "color": _vec(light.color)}
-    if obj.hide_render:
-        entry["enabled"] = False
     if light.type in ('POINT', 'SPOT'):
-        entry.update(type=light.type.lower(), position=_vec(position), power=light.energy)
+        entry.update(type=light.type.lower(), position=_vec(position), power=power)
         if light.shadow_soft_size > 0.0:
-            entry["radius"] = light.shadow_soft_size
+            entry["radius"] = light.shadow_soft_size * metres
         if light.type == 'SPOT':
             entry.update(direction=_vec(forward), spot_angle_deg=math.degrees(light.spot_size), blend=light.spot_blend)
     elif light.type == 'AREA':
@@ -105,7 +122,7 @@ def light_entry(obj):
             print("relight_export: area light '%s' is a %s; exported as a rectangle of the same area"
                   % (obj.name, light.shape.lower()))
         entry.update(type="area", position=_vec(position), direction=_vec(forward), up=_vec(up),
-                     size=[w, h], power=light.energy)
+                     size=[w, h], power=power)
     elif light.type == 'SUN':
         entry.update(type="directional", direction=_vec(forward), irradiance=light.energy)
         if light.angle > 0.0:
@@ -125,8 +142,65 @@ def _world_background(world):
     return None, 1.0
 
 
-def world_entries(scene, outdir, probe_position):
-    """background (constant colour) or probes (an equirect HDRI) for the world."""
+def _environment_frame(texture):
+    """relight's forward and up for an Environment Texture's equirect image.
+
+    Cycles looks a direction d up at u = 0.5 - atan2(d.y, d.x)/2pi, v = 0.5 + asin(d.z)/pi
+    (u from the left, v from the bottom): the image centre shows +X, the top row +Z and
+    columns run towards -Y, which is relight's equirect with forward +X and up +Z.
+    A Mapping node (fed by Texture Coordinate > Generated, the world direction) makes the
+    lookup R d (Point, Vector, Normal) or R^-1 d (Texture): the frame turns by R^-1 or R."""
+    forward, up = mathutils.Vector((1.0, 0.0, 0.0)), mathutils.Vector((0.0, 0.0, 1.0))
+    vector = texture.inputs['Vector']
+    if not vector.is_linked:
+        return forward, up
+    mapping = vector.links[0].from_node
+    if mapping.type != 'MAPPING':
+        raise BridgeError("the world's Environment Texture takes its vector from a %s node; relight takes "
+                          "none, or a Mapping node fed by Texture Coordinate > Generated" % mapping.type)
+    source = mapping.inputs['Vector'].links[0].from_socket if mapping.inputs['Vector'].is_linked else None
+    if source is None or source.node.type != 'TEX_COORD' or source.name != 'Generated':
+        raise BridgeError("the world's Mapping node is not fed by Texture Coordinate > Generated")
+    scale = mapping.inputs['Scale'].default_value if 'Scale' in mapping.inputs else (1.0, 1.0, 1.0)
+    if min(scale) <= 0.0 or max(scale) - min(scale) > 1e-6 * max(scale):
+        raise BridgeError("the world's Mapping node scales the HDRI unevenly (%g, %g, %g); relight takes "
+                          "an undistorted sky" % tuple(scale))
+    if mapping.vector_type in ('POINT', 'TEXTURE') and mapping.inputs['Location'].default_value.length > 1e-6:
+        raise BridgeError("the world's Mapping node moves the HDRI (Location); relight takes rotations only")
+    rotation = mathutils.Euler(mapping.inputs['Rotation'].default_value, 'XYZ').to_matrix()
+    turn = rotation if mapping.vector_type == 'TEXTURE' else rotation.transposed()
+    return turn @ forward, turn @ up
+
+
+def _write_linear_exr(image, path, scene):
+    """The image's float pixels as a 32-bit EXR (Image.save() of a generated image writes them
+    colour-managed; save_render with an EXR format writes them as they are)."""
+    settings = scene.render.image_settings
+    kept = settings.file_format, settings.color_depth
+    settings.file_format, settings.color_depth = 'OPEN_EXR', '32'
+    try:
+        image.save_render(path, scene=scene)
+    finally:
+        settings.file_format, settings.color_depth = kept
+
+
+def _write_scaled_exr(image, factor, path, scene):
+    """The image's colour times `factor`, as a 32-bit EXR."""
+    width, height = image.size
+    pixels = array.array('f', [0.0]) * (width * height * 4)
+    image.pixels.foreach_get(pixels)
+    for channel in range(3):  # alpha stays
+        pixels[channel::4] = array.array('f', (value * factor for value in pixels[channel::4]))
+    copy = bpy.data.images.new("relight scaled " + image.name, width, height, float_buffer=True)
+    try:
+        copy.pixels.foreach_set(pixels)
+        _write_linear_exr(copy, path, scene)
+    finally:
+        bpy.data.images.remove(copy)
+
+
+def world_entries(scene, folder, probe_position):
+    """background (constant colour) or probes (an equirect HDRI, written into `folder`) for the world."""
     world = scene.world
     node, strength = _world_background(world)
     if node is None:
@@ -142,32 +216,27 @@ def world_entries(scene, outdir, probe_position):
     if texture.projection != 'EQUIRECTANGULAR':
         raise BridgeError("the world's Environment Texture uses %s projection; relight takes equirectangular"
                           % texture.projection)
-    if abs(strength - 1.0) > 1e-6:
-        print("relight_export: warning: the world strength %.3g is not applied to the probe image" % strength)
-    # Blender looks direction d up at u = atan2(d.y, -d.x)/2pi + 0.5: the image centre faces -X with Z up,
-    # which is relight's equirect probe with forward -X. A Mapping node's Z rotation turns that.
-    forward = mathutils.Vector((-1.0, 0.0, 0.0))
-    vector = texture.inputs['Vector']
-    if vector.is_linked and vector.links[0].from_node.type == 'MAPPING':
-        rotation = vector.links[0].from_node.inputs['Rotation'].default_value
-        if abs(rotation[0]) > 1e-6 or abs(rotation[1]) > 1e-6:
-            raise BridgeError("the world's Mapping node tilts the HDRI; relight takes rotations about Z only")
-        forward = mathutils.Matrix.Rotation(-rotation[2], 3, 'Z') @ forward
+    forward, up = _environment_frame(texture)
     image = texture.image
-    name = bpy.path.clean_name(os.path.splitext(image.name)[0]) + ".exr"
-    target = os.path.join(outdir, name)
     source = bpy.path.abspath(image.filepath)
-    if image.packed_file is None and os.path.isfile(source):
+    scaled = abs(strength - 1.0) > 1e-6
+    if scaled and not image.is_float:
+        print("relight_export: warning: the world strength %.3g is not applied to the 8-bit image %s"
+              % (strength, image.name))
+        scaled = False
+    if scaled:  # the probe is the light Cycles renders with: the image times the strength
+        name = "%s_x%g.exr" % (bpy.path.clean_name(os.path.splitext(image.name)[0]), strength)
+        _write_scaled_exr(image, strength, os.path.join(folder, name), scene)
+    elif image.packed_file is None and image.source == 'FILE' and os.path.isfile(source):
         name = os.path.basename(source)
-        target = os.path.join(outdir, name)
+        target = os.path.join(folder, name)
         if os.path.abspath(source) != os.path.abspath(target):
             shutil.copyfile(source, target)
     else:  # packed or generated: write its float pixels
-        image.filepath_raw = target
-        image.file_format = 'OPEN_EXR'
-        image.save()
+        name = bpy.path.clean_name(os.path.splitext(image.name)[0]) + ".exr"
+        _write_linear_exr(image, os.path.join(folder, name), scene)
     return {"probes": [{"image": name, "mapping": "equirect", "position": _vec(probe_position),
-                        "forward": _vec(forward), "up": [0.0, 0.0, 1.0]}]}
+                        "forward": _vec(forward), "up": _vec(up)}]}
 
 
 def camera_photo(scene):
@@ -179,55 +248,105 @@ def camera_photo(scene):
     return None
 
 
-def write_geometry(path):
-    """Every visible mesh as one OBJ in world coordinates (no axis change), triangulated."""
-    if hasattr(bpy.ops.wm, "obj_export"):  # Blender 3.3+
-        bpy.ops.wm.obj_export(filepath=path, export_selected_objects=False, apply_modifiers=True,
-                              forward_axis='Y', up_axis='Z', export_materials=False, export_uv=False,
-                              export_triangulated_mesh=True, export_animation=False)
-    else:
-        bpy.ops.export_scene.obj(filepath=path, use_selection=False, use_mesh_modifiers=True,
-                                 axis_forward='Y', axis_up='Z', use_materials=False, use_uvs=False,
-                                 use_triangles=True)
+def rendered_objects(scene):
+    """The objects Cycles renders: in no excluded or render-disabled collection, not hide_render."""
+    found = set()
+
+    def walk(layer_collection):
+        if layer_collection.exclude or layer_collection.collection.hide_render:
+            return
+        found.update(o for o in layer_collection.collection.objects if not o.hide_render)
+        for child in layer_collection.children:
+            walk(child)
+
+    walk(bpy.context.view_layer.layer_collection)
+    return found
+
+
+def write_geometry(path, metres):
+    """Every mesh Cycles renders (hide_render objects and disabled collections left out) as one OBJ
+    in world coordinates, metres, no axis change, triangulated. Refuses a scene without faces."""
+    bpy.ops.wm.obj_export(filepath=path, export_selected_objects=False, export_eval_mode='DAG_EVAL_RENDER',
+                          apply_modifiers=True, global_scale=metres, forward_axis='Y', up_axis='Z',
+                          export_materials=False, export_uv=False, export_normals=True,
+                          export_triangulated_mesh=True, export_animation=False)
+    with open(path) as f:
+        if not any(line.startswith("f ") for line in f):
+            raise BridgeError("no visible mesh: the render shows nothing that could be relight's geometry")
+
+
+def check_photo_size(photo, resolution):
+    """Refuses a photo whose aspect ratio is not the render resolution's (the camera's field of
+    view is worked out for that shape)."""
+    image = bpy.data.images.load(photo, check_existing=False)
+    try:
+        width, height = image.size
+    finally:
+        bpy.data.images.remove(image)
+    if width == 0 or height == 0:
+        raise BridgeError("the photo %s cannot be read as an image" % photo)
+    if abs(width * resolution[1] - height * resolution[0]) > max(resolution[0], resolution[1]) * 0.01 * height:
+        raise BridgeError("the photo %s is %dx%d, not the aspect ratio of the render resolution %dx%d"
+                          % (photo, width, height, resolution[0], resolution[1]))
 
 
 def export_scene(scene, outdir, photo=None):
-    """Writes OUTDIR/scene.json, OUTDIR/geometry.obj and copies the photo (and HDRI) there."""
-    os.makedirs(outdir, exist_ok=True)
+    """Writes OUTDIR/scene.json, OUTDIR/geometry.obj and copies the photo (and HDRI) there.
+    Checks first, so that a refused scene writes nothing."""
     photo = photo or camera_photo(scene)
     if not photo:
         raise BridgeError("no photo: give one (--photo, or the exporter's Photo field) or set it as the "
                           "camera's background image")
     if not os.path.isfile(photo):
         raise BridgeError("the photo %s does not exist" % photo)
-    camera, resolution = camera_block(scene)
+    metres = metres_per_unit(scene)
+    camera, resolution = camera_block(scene, metres)
+    check_photo_size(photo, resolution)
+    rendered = rendered_objects(scene)
+    lights = []
+    for obj in scene.objects:
+        if obj.type == 'LIGHT':
+            lights.append(light_entry(obj, metres))
+            if obj not in rendered:
+                lights[-1]["enabled"] = False
     photo_name = os.path.basename(photo)
-    if os.path.abspath(os.path.dirname(photo)) != os.path.abspath(outdir):
-        shutil.copyfile(photo, os.path.join(outdir, photo_name))
-    write_geometry(os.path.join(outdir, "geometry.obj"))
-    lights = [light_entry(obj) for obj in scene.objects if obj.type == 'LIGHT']
     doc = {"format": "relight-scene/1", "photo": photo_name, "geometry": "geometry.obj", "camera": camera,
            "lights": lights}
-    doc.update(world_entries(scene, outdir, mathutils.Vector(camera["position"])))
-    # Written beside and renamed over, so a reader never sees half a file.
     target = os.path.join(outdir, "scene.json")
-    with open(target + ".part", "w") as f:
-        json.dump(doc, f, indent=2)
-        f.write("\n")
-    os.replace(target + ".part", target)
-    print("relight_export: wrote %s (%d lights, render resolution %dx%d: the photo must have this aspect ratio)"
-          % (target, len(lights), resolution[0], resolution[1]))
+    # Everything is made in a scratch folder first: a scene refused on the way writes nothing.
+    with tempfile.TemporaryDirectory() as scratch:
+        write_geometry(os.path.join(scratch, "geometry.obj"), metres)
+        doc.update(world_entries(scene, scratch, mathutils.Vector(camera["position"])))
+        with open(os.path.join(scratch, "scene.json"), "w") as f:
+            json.dump(doc, f, indent=2)
+            f.write("\n")
+        os.makedirs(outdir, exist_ok=True)
+        if os.path.abspath(os.path.dirname(photo)) != os.path.abspath(outdir):
+            shutil.copyfile(photo, os.path.join(outdir, photo_name))
+        for name in os.listdir(scratch):
+            if name != "scene.json":
+                shutil.move(os.path.join(scratch, name), os.path.join(outdir, name))
+        # scene.json last, renamed over: a reader never sees half a file, nor one whose files are missing.
+        shutil.move(os.path.join(scratch, "scene.json"), target + ".part")
+        os.replace(target + ".part", target)
+    print("relight_export: wrote %s (%d lights, %g m per Blender unit)" % (target, len(lights), metres))
     return target
 
 
 # ------------------------------------------------------------------ import
 
-def _linear_colour(value):
-    if isinstance(value, str):  # "#rrggbb", sRGB-encoded
+def _linear_colour(value, where):
+    """A rig colour as typed: [r, g, b] linear, or "#rrggbb" sRGB-encoded (linearised)."""
+    if isinstance(value, str):
+        if len(value) != 7 or value[0] != '#' or any(c not in "0123456789abcdefABCDEF" for c in value[1:]):
+            raise BridgeError("%s: %r is not a colour \"#rrggbb\"" % (where, value))
+
         def lin(c):
             return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
         return [lin(int(value[i:i + 2], 16) / 255.0) for i in (1, 3, 5)]
-    return list(value)
+    if not isinstance(value, list) or len(value) != 3 or not all(isinstance(c, (int, float)) for c in value):
+        raise BridgeError("%s: %r is not a colour [r, g, b]" % (where, value))
+    return [float(c) for c in value]
 
 
 def _orientation(direction, up=None):
@@ -240,54 +359,92 @@ def _orientation(direction, up=None):
     return mathutils.Matrix((right, back.cross(right), back)).transposed()
 
 
+def scale_world(scene, scale):
+    """The world's strength (or colour) at `scale` times what it was before any rig was imported:
+    a rig's environment_scale. The unscaled value is kept on the world, so importing rig after rig
+    does not compound."""
+    world = scene.world
+    if world is None:
+        if scale != 1.0:
+            print("relight_export: the scene has no world to scale by %g" % scale)
+        return
+    node, strength = _world_background(world)
+    base = world.get("relight_unscaled")
+    if base is None:
+        base = world["relight_unscaled"] = [strength] if node is not None else list(world.color)
+    if node is not None:
+        node.inputs['Strength'].default_value = base[0] * scale
+    else:
+        world.color = [c * scale for c in base]
+
+
+def _light_from_entry(entry, where, metres):
+    """(name, a Blender light object not yet in the scene) for one light of a rig."""
+    def need(key):
+        if key not in entry:
+            raise BridgeError("%s: the %s light has no \"%s\"" % (where, entry.get("type"), key))
+        return entry[key]
+
+    kind = entry.get("type")
+    blender_type = {"point": 'POINT', "spot": 'SPOT', "area": 'AREA', "directional": 'SUN'}.get(kind)
+    if blender_type is None:
+        raise BridgeError("%s/type: %r is not point, spot, area or directional" % (where, kind))
+    name = entry.get("name", "%s %s" % (kind, where.rsplit("/", 1)[-1]))
+    data = bpy.data.lights.new(name, blender_type)
+    data.color = _linear_colour(entry.get("color", [1.0, 1.0, 1.0]), where + "/color")
+    rotation = mathutils.Matrix.Identity(3)
+    if kind == "directional":
+        data.energy = need("irradiance")
+        data.angle = math.radians(entry.get("angle_deg", 0.0))
+        rotation = _orientation(need("direction"))
+    else:  # Blender units and the power that lights a surface so many units away as the rig's does
+        data.energy = need("power") / metres ** 2
+    if kind in ("point", "spot"):
+        data.shadow_soft_size = entry.get("radius", 0.0) / metres
+    if kind == "spot":
+        data.spot_size = math.radians(need("spot_angle_deg"))
+        data.spot_blend = entry.get("blend", 0.0)
+        rotation = _orientation(need("direction"))
+    elif kind == "area":
+        data.shape = 'RECTANGLE'
+        data.size, data.size_y = (x / metres for x in need("size"))
+        rotation = _orientation(need("direction"), need("up"))
+    obj = bpy.data.objects.new(name, data)
+    position = mathutils.Vector(entry.get("position", (0.0, 0.0, 0.0)) if kind == "directional"
+                                else need("position")) / metres
+    obj.matrix_world = mathutils.Matrix.Translation(position) @ rotation.to_4x4()
+    obj.hide_render = not entry.get("enabled", True)
+    return name, obj
+
+
 def import_rig(path, collection=None, replace=False):
     """Creates Blender lights for the lights of a rig.json (or scene.json), after deleting the
-    scene's lights if `replace`; returns them. A rig's environment_scale is reported, not applied."""
+    scene's lights if `replace`, and scales the world by the rig's environment_scale; returns the
+    lights. Lengths are turned into the scene's units (its Unit Scale)."""
     with open(path) as f:
         doc = json.load(f)
-    if doc.get("format") not in ("relight-rig/1", "relight-scene/1"):
-        raise BridgeError("%s: not a relight rig or scene (format %r)" % (path, doc.get("format")))
+    if not isinstance(doc, dict) or doc.get("format") not in ("relight-rig/1", "relight-scene/1"):
+        raise BridgeError("%s: not a relight rig or scene (format %r)"
+                          % (path, doc.get("format") if isinstance(doc, dict) else None))
     lights = doc.get("lights", [])
-    if not isinstance(lights, list):
+    if not isinstance(lights, list) or not all(isinstance(entry, dict) for entry in lights):
         raise BridgeError("%s: /lights is not a list of lights" % path)
-    collection = collection or bpy.context.scene.collection
-    if replace:
-        for obj in [o for o in bpy.context.scene.objects if o.type == 'LIGHT']:
-            bpy.data.objects.remove(obj)
     scale = doc.get("environment_scale", 1.0)
-    if scale != 1.0:
-        print("relight_export: the rig scales the environment by %g: scale the world's strength to match" % scale)
-    made = []
-    for i, entry in enumerate(lights):
-        kind = entry["type"]
-        blender_type = {"point": 'POINT', "spot": 'SPOT', "area": 'AREA', "directional": 'SUN'}[kind]
-        name = entry.get("name", "%s %d" % (kind, i))
-        data = bpy.data.lights.new(name, blender_type)
-        data.color = _linear_colour(entry.get("color", [1.0, 1.0, 1.0]))
-        obj = bpy.data.objects.new(name, data)
+    if not isinstance(scale, (int, float)) or scale < 0.0:
+        raise BridgeError("%s: /environment_scale %r is not a number >= 0" % (path, scale))
+    scene = bpy.context.scene
+    metres = metres_per_unit(scene)
+    # Every light is made before anything in the scene changes: a bad entry changes nothing.
+    made = [_light_from_entry(entry, "%s: /lights/%d" % (path, i), metres) for i, entry in enumerate(lights)]
+    if replace:
+        for obj in [o for o in scene.objects if o.type == 'LIGHT']:
+            bpy.data.objects.remove(obj)
+    collection = collection or scene.collection
+    for name, obj in made:
         collection.objects.link(obj)
-        rotation = mathutils.Matrix.Identity(3)
-        if kind in ("point", "spot"):
-            data.energy = entry["power"]
-            data.shadow_soft_size = entry.get("radius", 0.0)
-        if kind == "spot":
-            data.spot_size = math.radians(entry["spot_angle_deg"])
-            data.spot_blend = entry.get("blend", 0.0)
-            rotation = _orientation(entry["direction"])
-        elif kind == "area":
-            data.shape = 'RECTANGLE'
-            data.size, data.size_y = entry["size"]
-            data.energy = entry["power"]
-            rotation = _orientation(entry["direction"], entry["up"])
-        elif kind == "directional":
-            data.energy = entry["irradiance"]
-            data.angle = math.radians(entry.get("angle_deg", 0.0))
-            rotation = _orientation(entry["direction"])
-        position = mathutils.Vector(entry.get("position", (0.0, 0.0, 0.0)))
-        obj.matrix_world = mathutils.Matrix.Translation(position) @ rotation.to_4x4()
-        obj.hide_render = not entry.get("enabled", True)
-        made.append(obj)
-    return made
+        obj.name = name  # the rig's name, now that a replaced light no longer holds it
+    scale_world(scene, float(scale))
+    return [obj for _, obj in made]
 
 
 # ------------------------------------------------------------------ add-on UI
@@ -327,7 +484,7 @@ class RELIGHT_OT_import_rig(bpy.types.Operator):
     def execute(self, context):
         try:
             made = import_rig(self.filepath, replace=self.replace)
-        except (BridgeError, KeyError, ValueError) as e:
+        except (BridgeError, ValueError, OSError) as e:
             self.report({'ERROR'}, "relight import: %s" % e)
             return {'CANCELLED'}
         self.report({'INFO'}, "%d lights imported" % len(made))
@@ -376,14 +533,18 @@ def main(argv):
             made = import_rig(args.import_rig, replace=args.replace)
             print("relight_export: %d lights imported from %s" % (len(made), args.import_rig))
             if args.save:
-                bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args.save))
+                bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args.save), check_existing=False)
         elif args.outdir:
-            export_scene(bpy.context.scene, os.path.abspath(args.outdir), args.photo)
+            export_scene(bpy.context.scene, os.path.abspath(args.outdir), args.photo and os.path.abspath(args.photo))
         else:
             parser.error("give OUTDIR, or --import-rig RIG")
-    except (BridgeError, KeyError, ValueError, OSError) as e:
+    except (BridgeError, ValueError, OSError) as e:
         print("relight_export: error: %s" % e, file=sys.stderr)
         sys.exit(2)
+    except Exception:  # a bug: Blender without --python-exit-code would carry on and exit 0
+        import traceback
+        traceback.print_exc()
+        sys.exit(1)
 
 
 if __name__ == "__main__":

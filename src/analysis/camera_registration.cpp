@@ -1,0 +1,406 @@
+#include "analysis/camera_registration.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+#include "render/gbuffer.h"
+
+namespace relight {
+
+namespace {
+
+// Canny's thresholds on the gradient of the smoothed log luminance: a step
+// of 0.15 in log luminance (a 16 % contrast) starts an edge, 0.06 continues
+// it. Sobel's 3x3 kernel reads a step of height H as about 4 H (less after
+// the smoothing); the gradient is stored at kGradientScale per unit.
+constexpr float kGradientScale = 100.0f;
+constexpr double kHighThreshold = 0.15 * 4 * 0.7 * kGradientScale, kLowThreshold = 0.06 * 4 * 0.7 * kGradientScale;
+// The mismatch reported: the mean edge distance capped at 8 pixels.
+constexpr float kReportCap = 8.0f;
+
+// One level of the pyramid: the photo's edges, each to a fraction of a pixel
+// (the peak of the gradient across it) with its normal, and for every pixel
+// the nearest of them. The residual of an image position is its distance
+// across the nearest edge (point to line: it slides along the edge freely),
+// in this level's pixels; `scale` full-resolution pixels make one of them.
+// Level pixel i is centred on full-resolution position scale * i + 0.5
+// (pyrDown keeps the even pixels' centres).
+struct EdgeField {
+  int scale = 1;
+  cv::Mat distance;                    // CV_32F, to the nearest edge pixel, this level's pixels
+  cv::Mat nearest;                     // CV_32S, the nearest edge pixel's index in position/normal
+  std::vector<Vec2> position, normal;  // full-resolution image positions; unit
+
+  size_t edge_pixels() const { return position.size(); }
+  // Signed, within +-cap; cap where no edge is within cap (or outside the photo).
+  float residual(const Vec2& full, float cap) const {
+    const int x = int(std::lround((full.x() - 0.5f) / scale)), y = int(std::lround((full.y() - 0.5f) / scale));
+    if (x < 0 || y < 0 || x >= distance.cols || y >= distance.rows || distance.at<float>(y, x) > cap) return cap;
+    const int k = nearest.at<int>(y, x);
+    return std::clamp(normal[size_t(k)].dot(full - position[size_t(k)]) / scale, -cap, cap);
+  }
+};
+
+cv::Mat log_luminance(const Image& photo) {
+  cv::Mat l(photo.height, photo.width, CV_32F);
+  double mean = 0.0;
+  for (const Vec3& p : photo.pixels) mean += std::max(0.0f, luminance(p));
+  const float floor = std::max(1e-8f, float(1e-3 * mean / std::max<size_t>(1, photo.pixels.size())));
+  for (int y = 0; y < photo.height; ++y)
+    for (int x = 0; x < photo.width; ++x)
+      l.at<float>(y, x) = std::log(std::max(floor, luminance(photo.pixels[size_t(y) * photo.width + x])));
+  return l;
+}
+
+float bilinear(const cv::Mat& m, float x, float y) {
+  x = std::clamp(x, 0.0f, float(m.cols - 1) - 1e-3f), y = std::clamp(y, 0.0f, float(m.rows - 1) - 1e-3f);
+  const int x0 = int(x), y0 = int(y);
+  const float fx = x - x0, fy = y - y0;
+  const float* r0 = m.ptr<float>(y0);
+  const float* r1 = m.ptr<float>(std::min(y0 + 1, m.rows - 1));
+  const int x1 = std::min(x0 + 1, m.cols - 1);
+  return (1 - fy) * ((1 - fx) * r0[x0] + fx * r0[x1]) + fy * ((1 - fx) * r1[x0] + fx * r1[x1]);
+}
+
+EdgeField edge_field(const cv::Mat& log_lum, int scale) {
+  cv::Mat smooth;
+  cv::GaussianBlur(log_lum, smooth, cv::Size(0, 0), 1.0);
+  cv::Mat gx, gy, dx, dy, edges, magnitude;
+  cv::Sobel(smooth, gx, CV_32F, 1, 0);
+  cv::Sobel(smooth, gy, CV_32F, 0, 1);
+  gx.convertTo(dx, CV_16S, kGradientScale);
+  gy.convertTo(dy, CV_16S, kGradientScale);
+  cv::Canny(dx, dy, edges, kLowThreshold, kHighThreshold, true);
+  cv::magnitude(gx, gy, magnitude);
+  EdgeField f;
+  f.scale = scale;
+  cv::Mat labels;
+  cv::distanceTransform(edges == 0, f.distance, labels, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
+  // Each edge pixel's own label names it; the peak of the gradient
+  // magnitude across it (a parabola through three samples) places it.
+  std::vector<int> index_of_label(size_t(edges.rows) * edges.cols + 2, -1);
+  for (int y = 0; y < edges.rows; ++y)
+    for (int x = 0; x < edges.cols; ++x) {
+      if (!edges.at<uint8_t>(y, x)) continue;
+      const Vec2 n = Vec2(gx.at<float>(y, x), gy.at<float>(y, x)).normalized();
+      const float m0 = magnitude.at<float>(y, x), mp = bilinear(magnitude, x + n.x(), y + n.y()),
+                  mm = bilinear(magnitude, x - n.x(), y - n.y());
+      const float curvature = mp - 2 * m0 + mm;
+      const float offset = curvature < 0 ? std::clamp(0.5f * (mm - mp) / curvature, -0.5f, 0.5f) : 0.0f;
+      index_of_label[size_t(labels.at<int>(y, x))] = int(f.position.size());
+      f.position.push_back(float(scale) * (Vec2(float(x), float(y)) + offset * n) + Vec2(0.5f, 0.5f));
+      f.normal.push_back(n);
+    }
+  f.nearest = cv::Mat(labels.size(), CV_32S);
+  for (int y = 0; y < labels.rows; ++y)
+    for (int x = 0; x < labels.cols; ++x)
+      f.nearest.at<int>(y, x) = std::max(0, index_of_label[size_t(labels.at<int>(y, x))]);
+  return f;
+}
+
+// The photo's edge fields, full resolution first, then halved each level.
+std::vector<EdgeField> edge_pyramid(const Image& photo, int levels) {
+  std::vector<EdgeField> fields;
+  cv::Mat l = log_luminance(photo);
+  for (int k = 0, scale = 1; k < levels; ++k, scale *= 2) {
+    fields.push_back(edge_field(l, scale));
+    cv::Mat half;
+    cv::pyrDown(l, half);
+    l = half;
+  }
+  return fields;
+}
+
+// The geometry's edges seen through `camera`: wherever two neighbouring
+// pixels of a one-sample G-buffer see different surfaces (or one sees
+// none), the point on the nearer surface where it ends, found to 1/16 pixel
+// by bisection along the two pixels' centres. On the nearer surface: a
+// silhouette is the occluder's edge, and it stays on it when the camera moves.
+std::vector<Vec3> geometry_edges(const Camera& camera, const RayScene& rays, const std::string& scene_file) {
+  const GBuffer g(camera, rays, 1, 1, scene_file);
+  const int w = g.width(), h = g.height();
+  std::vector<std::vector<Vec3>> rows(h);
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x)
+      for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+        const int nx = x + dx, ny = y + dy;
+        if (nx >= w || ny >= h) continue;
+        const GBufferSample &a = g.central(x, y), &b = g.central(nx, ny);
+        if (!a.hit && !b.hit) continue;
+        if (a.hit && b.hit && GBuffer::same_surface(a.surface, b.surface)) continue;
+        const bool a_near = a.hit && (!b.hit || a.surface.distance <= b.surface.distance);
+        const SurfacePoint& near = a_near ? a.surface : b.surface;
+        Vec2 from = Vec2(x + 0.5f, y + 0.5f), to = Vec2(nx + 0.5f, ny + 0.5f);
+        if (!a_near) std::swap(from, to);
+        float lo = 0.0f, hi = 1.0f;  // the near surface is seen at lo, not at hi
+        Vec3 point = near.position;
+        for (int step = 0; step < 4; ++step) {
+          const float t = 0.5f * (lo + hi);
+          const Vec2 p = from + t * (to - from);
+          SurfacePoint s;
+          if (rays.intersect(camera.position(), camera.ray_direction(p.x(), p.y()), s) &&
+              GBuffer::same_surface(near, s))
+            lo = t, point = s.position;
+          else
+            hi = t;
+        }
+        rows[y].push_back(point);
+      }
+  });
+  std::vector<Vec3> points;
+  for (const auto& r : rows) points.insert(points.end(), r.begin(), r.end());
+  return points;
+}
+
+// The camera's nine degrees of freedom about a base camera, in physical
+// units: a turn about its right, up and forward axes (radians), a move
+// along them (m), the log of the change of tan(vfov/2), and the shift of the
+// principal point (fractions of the width and height).
+using Params = Eigen::Matrix<double, 9, 1>;
+
+CameraSpec moved_camera(const Camera& base, const Params& p) {
+  const CameraSpec& b = base.spec();
+  const Vec3 forward = base.forward();
+  const Vec3 right = forward.cross(b.up).normalized();
+  const Vec3 up = right.cross(forward);
+  const Vec3 omega = float(p[0]) * right + float(p[1]) * up + float(p[2]) * forward;
+  const float angle = omega.norm();
+  const Eigen::Matrix3f turn =
+      angle > 0.0f ? Eigen::AngleAxisf(angle, omega / angle).toRotationMatrix() : Eigen::Matrix3f::Identity();
+  CameraSpec s = b;
+  s.position = b.position + float(p[3]) * right + float(p[4]) * up + float(p[5]) * forward;
+  s.look_at = s.position + turn * (b.look_at - b.position);
+  s.up = turn * b.up;
+  s.vfov_deg = 2.0f * std::atan(std::tan(radians(b.vfov_deg) * 0.5f) * std::exp(float(p[6]))) * 180.0f / kPi;
+  s.principal_point = b.principal_point + Vec2(float(p[7]), float(p[8]));
+  return s;
+}
+
+// Huber with a cap: quadratic to delta, linear to cap, constant beyond.
+double robust_cost(double r, double delta, double cap) {
+  r = std::min(r, cap);
+  return r <= delta ? 0.5 * r * r : delta * (r - 0.5 * delta);
+}
+double robust_weight(double r, double delta, double cap) { return r >= cap ? 0.0 : r <= delta ? 1.0 : delta / r; }
+
+// The registration at one level: Levenberg-Marquardt on the capped edge
+// distances of the points, in units that move an edge about one of the
+// level's pixels, with the position's prior.
+class LevelSolve {
+ public:
+  LevelSolve(const Camera& base, const std::vector<Vec3>& points, const EdgeField& field, float cap,
+             const RegistrationOptions& options)
+      : base_(base), points_(points), field_(field), cap_(cap) {
+    const double s = field.scale, f = 0.5 * base.height() / std::tan(radians(base.spec().vfov_deg) * 0.5);
+    std::vector<float> depths;
+    for (const Vec3& p : points) depths.push_back((p - base.position()).dot(base.forward()));
+    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+    const double depth = depths.empty() ? 1.0 : std::max(0.01f, depths[depths.size() / 2]);
+    unit_ << s / f, s / f, s / (0.5 * base.width()), s / f * depth, s / f * depth, s / (0.5 * base.width()) * depth,
+        s / (0.5 * base.height()), s / base.width(), s / base.height();
+    refine_position_ = options.refine_position;
+    // The priors' weights: a move of sigma costs what every point one pixel off does.
+    const double n = double(points.size());
+    prior_.setZero();
+    for (int k = 3; k < 6; ++k) prior_[k] = n * std::pow(unit_[k] / options.position_sigma_m, 2);
+    prior_[7] = n * std::pow(unit_[7] / options.principal_point_sigma, 2);
+    prior_[8] = n * std::pow(unit_[8] * base.height() / (base.width() * options.principal_point_sigma), 2);
+  }
+
+  Params solve(int max_iterations) {
+    Eigen::Matrix<double, 9, 1> z = Eigen::Matrix<double, 9, 1>::Zero();
+    double lambda = 1e-3;
+    Eigen::VectorXd r = residuals(z);
+    double cost = total_cost(r, z);
+    for (int it = 0; it < max_iterations; ++it) {
+      // The Jacobian by central differences, half a unit (~half a pixel) each way.
+      Eigen::Matrix<double, Eigen::Dynamic, 9> jac(r.size(), 9);
+      jac.setZero();
+      for (int k = 0; k < 9; ++k) {
+        if (!active(k)) continue;
+        Params dz = Params::Zero();
+        dz[k] = 0.5;
+        jac.col(k) = (residuals(z + dz) - residuals(z - dz)) / 1.0;
+      }
+      Eigen::VectorXd w(r.size());
+      for (Eigen::Index i = 0; i < r.size(); ++i) w[i] = robust_weight(std::abs(r[i]), kDelta, cap_);
+      Eigen::Matrix<double, 9, 9> a = jac.transpose() * w.asDiagonal() * jac;
+      Eigen::Matrix<double, 9, 1> g = jac.transpose() * w.cwiseProduct(r);
+      a.diagonal() += prior_;
+      g += prior_.cwiseProduct(z);
+      for (int k = 0; k < 9; ++k)
+        if (!active(k)) a.row(k).setZero(), a.col(k).setZero(), a(k, k) = 1.0, g[k] = 0.0;
+      bool stepped = false;
+      while (lambda < 1e8) {
+        Eigen::Matrix<double, 9, 9> damped = a;
+        damped.diagonal() += lambda * (a.diagonal().array() + 1e-6).matrix();
+        const Params next = z - damped.ldlt().solve(g);
+        const Eigen::VectorXd rn = residuals(next);
+        const double c = total_cost(rn, next);
+        if (c < cost) {
+          stepped = (next - z).cwiseAbs().maxCoeff() > 1e-3;
+          z = next, r = rn, cost = c, lambda = std::max(1e-6, lambda * 0.3);
+          break;
+        }
+        lambda *= 10.0;
+      }
+      if (!stepped) break;
+    }
+    return unit_.cwiseProduct(z);
+  }
+
+  // The mean capped distance of the points through the base camera moved by p.
+  double mean_distance(const Params& p) const {
+    const Eigen::VectorXd r = residuals(p.cwiseQuotient(unit_));
+    return r.size() ? r.cwiseAbs().mean() * field_.scale : 0.0;
+  }
+
+ private:
+  static constexpr double kDelta = 1.0;  // Huber's delta: a pixel of the level
+  bool active(int k) const { return refine_position_ || k < 3 || k > 5; }
+
+  Eigen::VectorXd residuals(const Params& z) const {
+    const Camera camera(moved_camera(base_, unit_.cwiseProduct(z)), base_.width(), base_.height());
+    Eigen::VectorXd r(points_.size());
+    for (size_t i = 0; i < points_.size(); ++i) {
+      const auto q = camera.project(points_[i]);
+      r[Eigen::Index(i)] = q ? field_.residual(*q, cap_) : cap_;
+    }
+    return r;
+  }
+  double total_cost(const Eigen::VectorXd& r, const Params& z) const {
+    double c = 0.0;
+    for (Eigen::Index i = 0; i < r.size(); ++i) c += robust_cost(std::abs(r[i]), kDelta, cap_);
+    c += 0.5 * z.dot(prior_.cwiseProduct(z));
+    return c;
+  }
+
+  const Camera& base_;
+  const std::vector<Vec3>& points_;
+  const EdgeField& field_;
+  float cap_;
+  Params unit_;
+  bool refine_position_ = true;
+  Params prior_;
+};
+
+// The levels, coarsest first: the pyramid level and the distance cap in its
+// pixels (the coarsest reaches 32 full-resolution pixels, about 2.5 degrees
+// of a 40-degree field over 480 rows), and the re-extractions of the edges.
+struct Level {
+  int pyramid;
+  float cap;
+  int rounds;
+};
+constexpr Level kLevels[] = {{3, 4.0f, 2}, {2, 4.0f, 2}, {1, 4.0f, 2}, {0, 4.0f, 2}};
+
+double mismatch_px(const std::vector<Vec3>& points, const Camera& camera, const EdgeField& full) {
+  double sum = 0.0;
+  for (const Vec3& p : points) {
+    const auto q = camera.project(p);
+    sum += q ? std::abs(full.residual(*q, kReportCap)) : kReportCap;
+  }
+  return points.empty() ? 0.0 : sum / double(points.size());
+}
+
+void check_range(const RegistrationResult& r, const Scene& scene, const RegistrationOptions& o) {
+  const auto refuse = [&](const std::string& what, float amount, float limit, const char* unit) {
+    throw InputError(scene.path.string(), "/camera",
+                     fmt::format("registration would {} {:.3g} {} (more than {:.3g}): the photo's edges do not match "
+                                 "the geometry's; check the camera and the geometry",
+                                 what, amount, unit, limit));
+  };
+  if (r.turned_deg() > o.max_turn_deg) refuse("turn the camera", r.turned_deg(), o.max_turn_deg, "degrees");
+  if (std::abs(r.fov_change()) > o.max_fov_change)
+    refuse("change the field of view", 100 * std::abs(r.fov_change()), 100 * o.max_fov_change, "%");
+  const float shift = (r.after.principal_point - r.before.principal_point).norm();
+  if (shift > o.max_principal_point_shift)
+    refuse("shift the principal point", 100 * shift, 100 * o.max_principal_point_shift, "% of the width");
+  if (r.moved_m() > o.max_move_m) refuse("move the camera", 100 * r.moved_m(), 100 * o.max_move_m, "cm");
+}
+
+}  // namespace
+
+float RegistrationResult::turned_deg() const {
+  const Vec3 f0 = (before.look_at - before.position).normalized(), f1 = (after.look_at - after.position).normalized();
+  const Vec3 r0 = f0.cross(before.up).normalized(), r1 = f1.cross(after.up).normalized();
+  Eigen::Matrix3f a, b;
+  a << r0, r0.cross(f0), f0;
+  b << r1, r1.cross(f1), f1;
+  const Eigen::AngleAxisf turn(Eigen::Matrix3f(b * a.transpose()));
+  return std::abs(turn.angle()) * 180.0f / kPi;
+}
+
+float RegistrationResult::fov_change() const { return after.vfov_deg / before.vfov_deg - 1.0f; }
+
+Vec2 RegistrationResult::principal_point_shift_px(int width, int height) const {
+  const Vec2 d = after.principal_point - before.principal_point;
+  return {d.x() * width, d.y() * height};
+}
+
+float RegistrationResult::moved_m() const { return (after.position - before.position).norm(); }
+
+double edge_mismatch(const Scene& scene, const RayScene& rays, const Camera& camera) {
+  const std::vector<EdgeField> full = edge_pyramid(scene.photo, 1);
+  return mismatch_px(geometry_edges(camera, rays, scene.path.string()), camera, full.front());
+}
+
+RegistrationResult register_camera(Scene& scene, const RayScene& rays, const RegistrationOptions& options,
+                                   Progress& progress) {
+  const std::string file = scene.path.string();
+  const std::vector<EdgeField> fields = edge_pyramid(scene.photo, int(std::size(kLevels)));
+  // Fewer than a row's worth of edge pixels: nothing to register by.
+  if (fields.front().edge_pixels() < size_t(scene.photo.width))
+    throw InputError(
+        file, "/photo",
+        fmt::format("only {} edge pixels: too few to register the camera by", fields.front().edge_pixels()));
+
+  RegistrationResult result;
+  result.before = scene.camera.spec();
+  std::vector<Vec3> points = geometry_edges(scene.camera, rays, file);
+  if (points.size() < 50)
+    throw InputError(
+        file, "/camera",
+        fmt::format("the geometry shows only {} edge pixels: too few to register the camera by", points.size()));
+  result.mismatch_before_px = mismatch_px(points, scene.camera, fields.front());
+
+  int rounds = 0;
+  for (const Level& l : kLevels) rounds += l.rounds;
+  progress.begin("register: matching the geometry's edges to the photo's", rounds);
+  Camera camera = scene.camera;
+  for (const Level& level : kLevels)
+    for (int round = 0; round < level.rounds; ++round) {
+      if (round > 0 || &level != &kLevels[0]) points = geometry_edges(camera, rays, file);
+      LevelSolve solve(camera, points, fields[size_t(level.pyramid)], level.cap, options);
+      const Params p = solve.solve(30);
+      spdlog::info("register: level {} round {}: {} edge points, mean distance {:.3f} -> {:.3f} px", level.pyramid,
+                   round, points.size(), solve.mean_distance(Params::Zero()), solve.mean_distance(p));
+      camera = Camera(moved_camera(camera, p), camera.width(), camera.height());
+      progress.advance();
+    }
+  progress.end();
+
+  points = geometry_edges(camera, rays, file);
+  result.after = camera.spec();
+  result.mismatch_after_px = mismatch_px(points, camera, fields.front());
+  result.edge_points = points.size();
+  // No better match (the given camera outside the basin, or already right):
+  // the camera stays as it was.
+  if (result.mismatch_after_px >= result.mismatch_before_px) {
+    result.after = result.before, result.mismatch_after_px = result.mismatch_before_px;
+    return result;
+  }
+  check_range(result, scene, options);
+  scene.camera = camera;
+  return result;
+}
+
+}  // namespace relight

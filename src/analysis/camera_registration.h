@@ -1,0 +1,64 @@
+// Registering the camera to the photo: a camera matched by hand, from fSpy
+// or from a focal length is a few pixels off, and the albedo then shows the
+// modelled objects' edges as bright and dark lines. The geometry's edges
+// (silhouettes, depth steps and creases, where neighbouring G-buffer pixels
+// see different surfaces) are points on the surfaces; the photo's edges
+// (Canny on log luminance) a distance field. The camera (orientation,
+// position, vertical field of view, principal point) is moved so that the
+// projected edge points fall on the photo's edges: robust least squares
+// (Huber, capped: the photo's shadow and texture edges the geometry lacks
+// and the geometry's edges the photo does not show cost a constant),
+// Levenberg-Marquardt with a numeric Jacobian, coarse to fine over an image
+// pyramid. A camera that would have to move further than the options allow
+// is refused: a wrong match is reported, not "fixed".
+#pragma once
+
+#include <string>
+
+#include "core/progress.h"
+#include "render/ray_scene.h"
+#include "scene/scene.h"
+
+namespace relight {
+
+struct RegistrationOptions {
+  // The refusal range: how far the registered camera may be from the given one.
+  float max_turn_deg = 3.0f;
+  float max_fov_change = 0.10f;             // fraction of vfov_deg
+  float max_principal_point_shift = 0.05f;  // fraction of the photo's width
+  float max_move_m = 0.20f;
+  // The prior on the camera's position: a few centimetres. Near-planar or far
+  // geometry cannot tell a small move from a small turn; the turn is taken.
+  float position_sigma_m = 0.02f;
+  // The prior on the principal point, a fraction of the width. A turn of the
+  // camera and a shift of the principal point move the photo's edges alike
+  // but for the perspective across the frame, less than the edges' noise
+  // over a few pixels: the given principal point (most photos are uncropped)
+  // decides between them.
+  float principal_point_sigma = 0.005f;
+  bool refine_position = true;
+};
+
+struct RegistrationResult {
+  CameraSpec before, after;
+  double mismatch_before_px = 0.0, mismatch_after_px = 0.0;  // mean capped edge distance, full-resolution pixels
+  size_t edge_points = 0;                                    // the geometry's edge points matched at the end
+  float turned_deg() const;
+  float fov_change() const;  // fraction of the given vfov_deg, signed
+  Vec2 principal_point_shift_px(int width, int height) const;
+  float moved_m() const;
+};
+
+// The mean capped distance (full-resolution pixels) of the geometry's edges
+// seen through `camera` to the photo's edges: what registration minimises.
+double edge_mismatch(const Scene& scene, const RayScene& rays, const Camera& camera);
+
+// Registers scene.camera to scene.photo and sets it; where no camera
+// matches better than the given one, it stays (after == before). Throws InputError
+// (scene file, "/camera") when the photo shows too few edges to register by,
+// or when the best match lies outside the options' range (the camera is then
+// left as it was).
+RegistrationResult register_camera(Scene& scene, const RayScene& rays, const RegistrationOptions& options,
+                                   Progress& progress);
+
+}  // namespace relight

@@ -1,0 +1,88 @@
+// relight register: the camera moved, turned and zoomed so that the
+// geometry's edges meet the photo's (src/analysis/camera_registration.h).
+#include <cstdio>
+#include <filesystem>
+
+#include "analysis/camera_registration.h"
+#include "cli/commands.h"
+#include "io/atomic_file.h"
+#include "io/scene_io.h"
+
+namespace relight::cli {
+
+namespace fs = std::filesystem;
+
+RegistrationResult register_and_report(Scene& scene, const RayScene& rays, const RegistrationOptions& options,
+                                       Progress& progress) {
+  const RegistrationResult r = register_camera(scene, rays, options, progress);
+  const int w = scene.camera.width(), h = scene.camera.height();
+  const Vec2 shift = r.principal_point_shift_px(w, h);
+  if (r.mismatch_after_px >= r.mismatch_before_px) {
+    std::printf(
+        "camera unchanged: no camera near it matches the photo's edges better (edge mismatch %.3f px); if it "
+        "is off by more than ~2 degrees, correct it by hand first\n",
+        r.mismatch_before_px);
+    return r;
+  }
+  std::printf(
+      "camera turned %.3g degrees, moved %.3g cm, vfov %.4g -> %.4g degrees (%+.2f %%), principal point "
+      "shifted %+.2f %+.2f px\n",
+      r.turned_deg(), 100.0f * r.moved_m(), r.before.vfov_deg, r.after.vfov_deg, 100.0f * r.fov_change(), shift.x(),
+      shift.y());
+  std::printf(
+      "edge mismatch %.3f -> %.3f px (mean distance of %zu geometry edge pixels to the photo's edges, capped "
+      "at 8 px)\n",
+      r.mismatch_before_px, r.mismatch_after_px, r.edge_points);
+  return r;
+}
+
+void add_register_command(CLI::App& app, Action& action) {
+  struct Args {
+    std::string scene, out;
+    RegistrationOptions options;
+    bool fixed_position = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("register", "refine the camera so that the geometry's edges meet the photo's");
+  cmd->add_option("scene", args->scene, "scene.json")->required();
+  cmd->add_option("-o,--out", args->out, "the registered scene.json to write (paths rewritten to still resolve)")
+      ->required();
+  cmd->add_option("--max-turn", args->options.max_turn_deg, "refuse to turn the camera more than this (degrees)")
+      ->check(CLI::Range(0.0f, 45.0f))
+      ->capture_default_str();
+  cmd->add_option("--max-fov-change", args->options.max_fov_change,
+                  "refuse to change vfov_deg by more than this fraction of it")
+      ->check(CLI::Range(0.0f, 0.5f))
+      ->capture_default_str();
+  cmd->add_option("--max-shift", args->options.max_principal_point_shift,
+                  "refuse to move the principal point more than this fraction of the photo's width")
+      ->check(CLI::Range(0.0f, 0.5f))
+      ->capture_default_str();
+  cmd->add_option("--max-move", args->options.max_move_m, "refuse to move the camera more than this (m)")
+      ->check(CLI::Range(0.0f, 10.0f))
+      ->capture_default_str();
+  cmd->add_flag("--fixed-position", args->fixed_position,
+                "keep the camera's position; refine only its orientation, vfov_deg and principal point");
+  cmd->footer(help_footer(
+      "The photo's edges (Canny on log luminance) and the geometry's (silhouettes, depth steps, creases) are\n"
+      "  matched coarse to fine: the camera's orientation, position, vfov_deg and principal point move so that\n"
+      "  the geometry's edges fall on the photo's. A camera that would have to move further than the --max-*\n"
+      "  limits is refused (exit 2, nothing written): the match is wrong, not small. Writes a complete scene.json.",
+      {{"relight register scene.json -o scene_registered.json", "refine the camera of a hand-made camera match"},
+       {"relight register scene.json --fixed-position -o scene_registered.json",
+        "keep the camera where it is; only turn and zoom it"}}));
+  cmd->callback([&action, args] {
+    action = [args](Progress& progress) {
+      AnalysisOptions load;
+      load.gbuffer_samples = 1;
+      LoadedScene s = load_for_rendering(args->scene, load, progress);
+      args->options.refine_position = !args->fixed_position;
+      register_and_report(s.scene, *s.rays, args->options, progress);
+      const fs::path out = fs::absolute(args->out);
+      write_text_atomically(out, scene_to_json(s.scene, out.parent_path()));
+      std::printf("registered scene written to %s\n", args->out.c_str());
+    };
+  });
+}
+
+}  // namespace relight::cli

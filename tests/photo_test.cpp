@@ -1,0 +1,314 @@
+// Camera photos: brackets merged into HDR (against the radiance they were
+// made from) and the mirror ball found in a picture (against the circle and
+// the environment it was drawn with).
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+#include "photo/hdr_merge.h"
+#include "photo/mirror_ball.h"
+#include "reference_scenes.h"
+#include "scene/probe.h"
+#include "scene_folder.h"
+
+namespace relight {
+namespace {
+
+// Radiance over three decades: a diagonal ramp with blobs of several sizes
+// (structure in both directions, not periodic, for the alignment) and a fine
+// texture, in colour.
+Image reference_radiance(int w, int h) {
+  const float blobs[][4] = {{0.2f, 0.3f, 0.08f, 0.6f}, {0.7f, 0.2f, 0.15f, -0.5f},   {0.5f, 0.7f, 0.05f, 0.8f},
+                            {0.85f, 0.8f, 0.1f, 0.4f}, {0.35f, 0.85f, 0.12f, -0.7f}, {0.6f, 0.45f, 0.03f, 0.9f}};
+  Image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float u = float(x) / (w - 1), v = float(y) / (h - 1);
+      float f = 0.6f * u + 0.4f * v;
+      for (const auto& b : blobs)
+        f += b[3] * std::exp(-((u - b[0]) * (u - b[0]) + (v - b[1]) * (v - b[1])) / (b[2] * b[2]));
+      const float level = std::pow(10.0f, -2.5f + 3.0f * std::clamp(f, 0.0f, 1.0f) / 1.0f);
+      // Texture of 2x2-pixel cells (a hash), which a one-pixel shift spoils.
+      const uint32_t cell = uint32_t(x / 2) * 73856093u ^ uint32_t(y / 2) * 19349663u;
+      const float texture = 0.75f + 0.5f * float((cell * 2654435761u) >> 24) / 255.0f;
+      img.at(x, y) = level * texture * Vec3(0.5f + 0.5f * v, 0.8f, 1.0f - 0.4f * u);
+    }
+  return img;
+}
+
+// What a camera with an sRGB tone curve writes for `radiance` exposed for
+// `time` seconds: clipped, rounded to 8 bits; shifted by (dx, dy) pixels
+// (the edge repeated).
+EncodedImage expose(const Image& radiance, float time, int dx = 0, int dy = 0) {
+  EncodedImage e{radiance.width, radiance.height, std::vector<uint8_t>(radiance.size() * 3), time};
+  for (int y = 0; y < radiance.height; ++y)
+    for (int x = 0; x < radiance.width; ++x) {
+      const Vec3& p =
+          radiance.at(std::clamp(x - dx, 0, radiance.width - 1), std::clamp(y - dy, 0, radiance.height - 1));
+      for (int c = 0; c < 3; ++c)
+        e.rgb[(size_t(y) * radiance.width + x) * 3 + c] =
+            uint8_t(std::lround(srgb_encode(std::clamp(p[c] * time, 0.0f, 1.0f)) * 255.0f));
+    }
+  return e;
+}
+
+// PSNR of the tone-mapped images (the project's measure for HDR) after the
+// one global scale (median ratio) that the merge cannot know.
+double scaled_psnr(const Image& merged, const Image& reference) {
+  std::vector<float> ratios;
+  for (size_t p = 0; p < merged.size(); ++p) ratios.push_back(reference.pixels[p].y() / merged.pixels[p].y());
+  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+  const float scale = ratios[ratios.size() / 2];
+  Image scaled = merged;
+  for (Vec3& p : scaled.pixels) p *= scale;
+  return psnr(tonemap_reinhard_srgb(scaled), tonemap_reinhard_srgb(reference));
+}
+
+const std::vector<float> kTimes = {1.0f / 8, 1.0f / 2, 2.0f, 8.0f, 32.0f};
+
+std::vector<EncodedImage> brackets_of(const Image& radiance, int shifted = -1) {
+  std::vector<EncodedImage> b;
+  for (size_t i = 0; i < kTimes.size(); ++i) b.push_back(expose(radiance, kTimes[i], int(i) == shifted ? 1 : 0, 0));
+  return b;
+}
+
+// One bracket alone, linearised: what a single 8-bit photo gives.
+Image linearised(const EncodedImage& e) {
+  Image img(e.width, e.height);
+  for (size_t p = 0; p < img.size(); ++p)
+    for (int c = 0; c < 3; ++c) img.pixels[p][c] = srgb_decode(e.rgb[p * 3 + c] / 255.0f) / e.exposure_time;
+  return img;
+}
+
+TEST(HdrMerge, RecoversTheRadianceUpToOneScale) {
+  const Image reference = reference_radiance(160, 120);
+  const std::vector<EncodedImage> brackets = brackets_of(reference);
+  const MergedBrackets merged = merge_brackets(brackets, kTimes, false);
+  // Measured 60.2 dB; the middle bracket alone (clipped highlights, 8-bit
+  // shadows) gives 23.5 dB.
+  const double single = scaled_psnr(linearised(brackets[2]), reference);
+  EXPECT_GT(scaled_psnr(merged.radiance, reference), 55.0);
+  EXPECT_GT(scaled_psnr(merged.radiance, reference), single + 30.0);
+  // The recovered response is the sRGB curve's inverse up to a constant: its
+  // rise between codes 64 and 192 matches (measured within 1 %).
+  const double want = std::log(srgb_decode(192.0f / 255) / srgb_decode(64.0f / 255));
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(merged.log_response[c][192] - merged.log_response[c][64], want, 0.03 * want) << "channel " << c;
+}
+
+// The public scenes' photos (Cycles renders) as an sRGB camera's brackets.
+TEST(HdrMerge, RecoversTheReferenceScenesPhotos) {
+  for (const char* name : {"outdoor", "bookcase", "studio"}) {
+    const auto path = test::reference_scenes_folder() / name / "photo.exr";
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " absent";
+    const Image reference = read_image(path);
+    const std::vector<EncodedImage> brackets = brackets_of(reference);
+    const double merged = scaled_psnr(merge_brackets(brackets, kTimes, true).radiance, reference);
+    const double single = scaled_psnr(linearised(brackets[2]), reference);
+    std::printf("%s: merged %.2f dB, middle bracket alone %.2f dB\n", name, merged, single);
+    EXPECT_GT(merged, 45.0) << name;  // measured 53.1, 60.6, 49.4 dB (alone: 34.5, 41.0, 19.9)
+  }
+}
+
+TEST(HdrMerge, AlignsABracketShiftedByOnePixel) {
+  const Image reference = reference_radiance(160, 120);
+  const std::vector<EncodedImage> brackets = brackets_of(reference, 3);
+  const MergedBrackets aligned = merge_brackets(brackets, kTimes, true);
+  const MergedBrackets unaligned = merge_brackets(brackets, kTimes, false);
+  const std::vector<std::array<int, 2>> want = {{0, 0}, {0, 0}, {0, 0}, {-1, 0}, {0, 0}};
+  EXPECT_EQ(aligned.shifts, want);
+  // Measured 60.2 dB aligned (as without the shift), 30.3 dB not aligned.
+  const double with = scaled_psnr(aligned.radiance, reference), without = scaled_psnr(unaligned.radiance, reference);
+  EXPECT_GT(with, 55.0);
+  EXPECT_GT(with, without + 20.0);
+}
+
+// A chrome ball showing `environment` (FORMAT.md's mirror-ball mapping, the
+// camera looking along +y, up +z) drawn into a picture at `ball`, 4x4
+// samples per pixel, on a striped background.
+Vec3 environment(const Vec3& d) { return Vec3(2.0f + 1.5f * d.x(), 2.0f + 1.5f * d.z(), 2.0f + 1.0f * d.y()); }
+const ProbeFrame kFrame(Vec3(0, 1, 0), Vec3(0, 0, 1));
+
+Image picture_with_ball(int w, int h, const Circle& ball) {
+  Image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      Vec3 sum = Vec3::Zero();
+      for (int sy = 0; sy < 4; ++sy)
+        for (int sx = 0; sx < 4; ++sx) {
+          const double px = x + (sx + 0.5) / 4, py = y + (sy + 0.5) / 4;
+          const Vec2 uv(float((px - ball.cx) / ball.r * 0.5 + 0.5), float((py - ball.cy) / ball.r * 0.5 + 0.5));
+          const auto d = probe_uv_to_direction(ProbeMapping::mirrorball, kFrame, uv);
+          sum += d ? environment(*d) : Vec3::Constant(0.15f + 0.05f * float(std::sin(0.3 * py)));
+        }
+      img.at(x, y) = sum / 16.0f;
+    }
+  return img;
+}
+
+TEST(MirrorBall, FindsTheBallAndCropsItToTheMapping) {
+  const Circle truth{141.3, 117.6, 63.2};
+  const Image picture = picture_with_ball(320, 240, truth);
+  const Circle found = find_mirror_ball(picture, "ball.exr");
+  // Measured within 0.08 px.
+  EXPECT_NEAR(found.cx, truth.cx, 0.25);
+  EXPECT_NEAR(found.cy, truth.cy, 0.25);
+  EXPECT_NEAR(found.r, truth.r, 0.25);
+
+  const Image probe = crop_mirror_ball(picture, found);
+  EXPECT_EQ(probe.width, std::lround(2 * found.r));
+  EXPECT_EQ(probe.height, probe.width);
+  // Every pixel well inside the disc shows the environment for its direction.
+  double error = 0;
+  int n = 0;
+  for (int row = 0; row < probe.height; ++row)
+    for (int col = 0; col < probe.width; ++col) {
+      const Vec2 uv((col + 0.5f) / probe.width, (row + 0.5f) / probe.height);
+      if ((uv - Vec2(0.5f, 0.5f)).squaredNorm() > 0.2f) continue;
+      error += (probe.at(col, row) - environment(*probe_uv_to_direction(ProbeMapping::mirrorball, kFrame, uv)))
+                   .cwiseAbs()
+                   .maxCoeff();
+      ++n;
+    }
+  EXPECT_LT(error / n, 0.01);  // of values 0.5-3.5; measured 0.0028
+}
+
+TEST(MirrorBall, APictureWithoutABallIsAnInputError) {
+  Image flat(200, 150, Vec3::Constant(0.3f));
+  EXPECT_THROW(find_mirror_ball(flat, "flat.exr"), InputError);
+}
+
+// The command line: files in, files out, bad input refused.
+
+using test::run_cli;
+using test::SceneFolder;
+
+// The lines of stderr that are errors.
+std::vector<std::string> error_lines(const std::string& err) {
+  std::vector<std::string> lines;
+  std::istringstream in(err);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("relight: error:", 0) == 0) lines.push_back(line);
+  return lines;
+}
+
+void expect_refused(const test::CliResult& r, const std::string& file, const std::string& problem,
+                    const std::filesystem::path& output) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  const auto errors = error_lines(r.err);
+  ASSERT_EQ(errors.size(), 1u) << r.err;
+  EXPECT_NE(errors[0].find(file), std::string::npos) << errors[0];
+  EXPECT_NE(errors[0].find(problem), std::string::npos) << errors[0];
+  EXPECT_FALSE(std::filesystem::exists(output));
+}
+
+// Brackets as the camera writes them, 8-bit sRGB (write_png's encoding),
+// bracket i exposed for kTimes[i]: their paths.
+std::vector<std::string> write_png_brackets(const SceneFolder& f, const Image& radiance) {
+  std::vector<std::string> paths;
+  for (size_t i = 0; i < kTimes.size(); ++i) {
+    paths.push_back((f / ("bracket" + std::to_string(i) + ".png")).string());
+    write_png(paths.back(), radiance, std::log2(kTimes[i]));
+  }
+  return paths;
+}
+
+TEST(HdrMergeCommand, MergesPngBracketsWithTheTimesGiven) {
+  SceneFolder f("hdr_merge_png");
+  const Image reference = reference_radiance(160, 120);
+  std::vector<std::string> args = {"hdr-merge"};
+  for (const auto& p : write_png_brackets(f, reference)) args.push_back(p);
+  args.insert(args.end(), {"--times", "1/8,1/2,2,8,32", "-o", (f / "merged.exr").string()});
+  const auto r = run_cli(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_GT(scaled_psnr(read_image(f / "merged.exr"), reference), 55.0);
+}
+
+TEST(HdrMergeCommand, TakesTheTimesFromExif) {
+  SceneFolder f("hdr_merge_exif");
+  const Image reference = reference_radiance(160, 120);
+  std::vector<std::string> args = {"hdr-merge"};
+  const std::vector<EncodedImage> brackets = brackets_of(reference);
+  for (size_t i = 0; i < brackets.size(); ++i) {
+    const std::string path = (f / ("bracket" + std::to_string(i) + ".tif")).string();
+    OIIO::ImageSpec spec(brackets[i].width, brackets[i].height, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("ExposureTime", kTimes[i]);
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, brackets[i].rgb.data()) &&
+                out->close());
+    args.push_back(path);
+  }
+  args.insert(args.end(), {"-o", (f / "merged.exr").string()});
+  const auto r = run_cli(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_GT(scaled_psnr(read_image(f / "merged.exr"), reference), 55.0);
+}
+
+TEST(HdrMergeCommand, RefusesOneImageMismatchedSizesAndMissingTimes) {
+  SceneFolder f("hdr_merge_bad");
+  const std::vector<std::string> png = write_png_brackets(f, reference_radiance(40, 30));
+  const std::string small = (f / "small.png").string(), out = (f / "merged.exr").string();
+  write_png(small, reference_radiance(20, 30));
+  expect_refused(run_cli({"hdr-merge", png[0], "--times", "1", "-o", out}), png[0], "is one image", out);
+  expect_refused(run_cli({"hdr-merge", png[0], small, "--times", "1,2", "-o", out}), small,
+                 "is 20x30, but " + png[0] + " is 40x30", out);
+  expect_refused(run_cli({"hdr-merge", png[0], png[1], "-o", out}), png[0], "has no EXIF ExposureTime", out);
+  expect_refused(run_cli({"hdr-merge", png[0], png[1], "--times", "1/4", "-o", out}), "--times", "1 times for 2 images",
+                 out);
+  expect_refused(run_cli({"hdr-merge", png[0], png[1], "--times", "1/4,1/0", "-o", out}), "--times",
+                 "'1/0' is not an exposure time", out);
+  expect_refused(run_cli({"hdr-merge", png[0], (f / "none.png").string(), "--times", "1,2", "-o", out}), "none.png",
+                 "file not found", out);
+}
+
+// An 8-bit photo: one sRGB warning per run, though render reads the photo
+// twice (for the analysis and for the G-buffer).
+TEST(LdrPhoto, WarnsOncePerRun) {
+  SceneFolder f("ldr_photo_warning");
+  write_png(f / "photo.png", Image(8, 6, Vec3(0.3f, 0.25f, 0.2f)));
+  f.scene["photo"] = "photo.png";
+  f.write_json();
+  const std::string scene = (f / "scene.json").string();
+  ASSERT_EQ(run_cli({"analyze", scene, "-o", (f / "analysis").string(), "--spp", "1"}).status, 0);
+  const auto r = run_cli({"render", scene, "--rig", (f / "rig.json").string(), "--analysis", (f / "analysis").string(),
+                          "-o", (f / "relit.exr").string(), "--spp", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  size_t warnings = 0;
+  for (size_t at = 0; (at = r.err.find("taken as sRGB-encoded", at)) != std::string::npos; ++at) ++warnings;
+  EXPECT_EQ(warnings, 1u) << r.err;
+}
+
+TEST(ProbeFromPhotoCommand, WritesTheCroppedBall) {
+  SceneFolder f("probe_from_photo");
+  const Circle truth{141.3, 117.6, 63.2};
+  write_exr(f / "ball.exr", picture_with_ball(320, 240, truth));
+  const auto r = run_cli({"probe-from-photo", (f / "ball.exr").string(), "-o", (f / "probe.exr").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Image probe = read_image(f / "probe.exr");
+  EXPECT_EQ(probe.width, 126);  // 2 x 63.2
+  EXPECT_EQ(probe.height, 126);
+  // Near the centre, the light from behind the camera (-forward).
+  const Vec2 uv(63.5f / 126, 63.5f / 126);
+  const Vec3 d = *probe_uv_to_direction(ProbeMapping::mirrorball, kFrame, uv);
+  EXPECT_GT(-d.y(), 0.999f);
+  EXPECT_LT((probe.at(63, 63) - environment(d)).cwiseAbs().maxCoeff(), 0.01f);
+}
+
+TEST(ProbeFromPhotoCommand, RefusesAPhotoWithoutABallAndACircleOutside) {
+  SceneFolder f("probe_from_photo_bad");
+  write_exr(f / "flat.exr", Image(200, 150, Vec3::Constant(0.3f)));
+  const std::string out = (f / "probe.exr").string();
+  expect_refused(run_cli({"probe-from-photo", (f / "flat.exr").string(), "-o", out}), "flat.exr",
+                 "no mirror ball's circle found", out);
+  expect_refused(run_cli({"probe-from-photo", (f / "flat.exr").string(), "--circle", "150,75,80", "-o", out}),
+                 "flat.exr", "leaves the 200x150 photo", out);
+  expect_refused(run_cli({"probe-from-photo", (f / "flat.exr").string(), "--circle", "100,75,0.5", "-o", out}),
+                 "--circle", "radius 0.5", out);
+}
+
+}  // namespace
+}  // namespace relight
