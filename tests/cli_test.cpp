@@ -104,8 +104,9 @@ TEST(Cli, AnalyseRigRenderGivesBackThePhoto) {
 
 TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
   const fs::path dir = temp_folder("renders");
-  ASSERT_EQ(
-      relight_run({"analyze", (kRoom / "scene.json").string(), "-o", dir.string(), "--spp", "8", "--save-renders"}), 0);
+  ASSERT_EQ(relight_run({"analyze", (kRoom / "scene.json").string(), "-o", dir.string(), "--spp", "8", "--save-renders",
+                         "--bounce-source", "albedo"}),
+            0);
   std::ifstream json(dir / "analysis.json");
   const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   const size_t at = text.find("\"iterations\":");
@@ -115,7 +116,7 @@ TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
   for (int i = 1; i <= renders; ++i) EXPECT_TRUE(fs::exists(dir / ("albedo_render" + std::to_string(i) + ".exr"))) << i;
   EXPECT_FALSE(fs::exists(dir / ("albedo_render" + std::to_string(renders + 1) + ".exr")));
   // The last render's albedo is the analysis's; the white-diffuse first one
-  // is far worse on the room's coloured walls.
+  // of the iteration is far worse on the room's coloured walls.
   const relight::Image truth = relight::read_image(kRoom / "albedo_gt.exr");
   const auto db = [&](const fs::path& f) { return relight::psnr(relight::clip01(relight::read_image(f)), truth); };
   const fs::path last = dir / ("albedo_render" + std::to_string(renders) + ".exr");

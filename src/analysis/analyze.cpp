@@ -215,14 +215,31 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     if (change < options.tolerance) break;
   }
 
-  // The photo rendered back from the analysis, with fewer paths (the
-  // residual compares blocks, where noise averages out).
-  IlluminationOptions back_options = illumination_options(options);
-  back_options.paths_per_pixel = std::max(1, options.paths_per_pixel / kResidualPathsDivisor);
+  // The photo rendered back from the analysis: the albedo on every surface,
+  // no photo radiance (what rendering the scene's own lights gives).
   const PhotoAlbedo final_albedo(scene.camera, gbuffer, result.albedo.albedo, result.albedo.mean,
                                  result.albedo.unseen_triangles);
-  const Image back = render_with(final_albedo, nullptr, back_options, "residual").surface;
-  result.residual = residual_of(scene.photo, result.albedo.albedo, back, result.coverage);
+  if (photo_radiance) {
+    // Rendered in full, and the albedo divided by it once more: the fixed
+    // point photo = albedo x L(albedo) of the renderer that re-lights, so
+    // that rendering the scene's own lights with the analysis's seed gives
+    // the photo back, its noise and all. The residual is taken before that
+    // division, from the albedo the photo's radiance gave.
+    IlluminationImages back = render_with(final_albedo, nullptr, illumination_options(options), "rendered back");
+    result.residual = residual_of(scene.photo, result.albedo.albedo, back.surface, result.coverage);
+    AlbedoImages closing = recover_albedo(scene.photo, back, gbuffer);
+    closing.unseen_triangles = std::move(result.albedo.unseen_triangles);
+    result.illumination = std::move(back);
+    result.albedo = std::move(closing);
+    ++result.iterations;
+    if (on_albedo) on_albedo(result.iterations, result.albedo);
+  } else {
+    // With fewer paths: the residual compares blocks, where noise averages out.
+    IlluminationOptions back_options = illumination_options(options);
+    back_options.paths_per_pixel = std::max(1, options.paths_per_pixel / kResidualPathsDivisor);
+    const Image back = render_with(final_albedo, nullptr, back_options, "residual").surface;
+    result.residual = residual_of(scene.photo, result.albedo.albedo, back, result.coverage);
+  }
   if (result.residual > kLargeResidual)
     spdlog::warn(
         "{}: albedo x illumination rendered back is {:.1f} % from the photo: the lights, probes or "

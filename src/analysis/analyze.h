@@ -44,7 +44,7 @@ struct AnalysisOptions {
   uint64_t seed = 1;
   int max_bounces = IntegratorOptions::kMaxBounces;
   bool interreflection = true;
-  BounceSource bounce_source = BounceSource::albedo;  // with interreflection on, --method path
+  BounceSource bounce_source = BounceSource::photo;  // with interreflection on, --method path
   bool denoise = true;                                // filter the environment + interreflection part of each render
   int max_iterations = 4;                             // interreflection re-renders at most
   float tolerance = 0.005f;                           // stop when the mean albedo change is below this

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 void add_analyze_command(CLI::App& app, Action& action) {
   struct Args {
     std::string scene, out, strategy, interreflection = "on", method = "path", direct_light = "pixels",
-                                      bounce_source = "albedo";
+                                      bounce_source = "photo";
     bool save_renders = false;
     AnalysisOptions options;
   };
