@@ -110,8 +110,7 @@ RelightSession::RelightSession(const Scene& scene, const RayScene& rays, const G
                                           options.width, options.height)) {
   if (options_.backend == Backend::gl) {
     std::string why;
-    fast_ =
-        GlRelighter::open(scene.mesh, view_->surfaces(), view_->layers().albedo_coverage, options_.shadow_maps, why);
+    fast_ = GlRelighter::open(scene.mesh, view_->surfaces(), options_.shadow_maps, why);
     if (fast_) {
       backend_ = Backend::gl;
     } else {
