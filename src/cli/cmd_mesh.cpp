@@ -130,9 +130,7 @@ void add_mesh_command(CLI::App& app, Action& action) {
       if (!args->albedo_gt.empty()) j.update(shadow_edge_figures(args->albedo_gt, args->mask, scene, gbuffer, edges));
 
       const fs::path out = args->out;
-      std::error_code ec;
-      fs::create_directories(out, ec);
-      if (!fs::is_directory(out)) throw InputError(out.string(), "", "cannot create the output folder");
+      create_output_folder(out);
       OutputBatch outputs;
       save_obj(out / "mesh.obj", mesh.to_triangle_mesh());
       write_png(out / "mesh.png", draw_edges_over_photo(scene.photo, edges));

@@ -132,9 +132,7 @@ void add_preview_command(CLI::App& app, Action& action) {
       options.final_render.paths_per_pixel = args->options.paths_per_pixel;
       options.final_render.max_bounces = args->options.max_bounces;
       const fs::path out(args->out);
-      std::error_code ec;
-      fs::create_directories(out, ec);
-      if (!fs::is_directory(out)) throw InputError(args->out, "", "cannot create the output folder");
+      create_output_folder(out);
 
       const AnalysedScene analysed(args->scene, args->analysis, args->options, progress);
       const LoadedScene& s = analysed.loaded;
