@@ -88,6 +88,15 @@ Light moved(Light light, const Vec3& by) {
   return light;
 }
 
+Light sun_light() {
+  Light sun;
+  sun.name = "sun";
+  sun.type = LightType::directional;
+  sun.direction = Vec3(0.3f, 0.5f, -0.8f).normalized();
+  sun.irradiance = 2.0f;
+  return sun;
+}
+
 TEST(Session, ConvergesToExactlyTheOfflineRender) {
   const Room& r = room();
   const SessionOptions options = quick_options();
@@ -176,24 +185,12 @@ TEST(Session, AddsAndRemovesLights) {
   const SessionOptions options = quick_options();
   Rig rig = example::evening_rig();
   RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
-  Light sun;
-  sun.type = LightType::directional;
-  sun.direction = Vec3(0.3f, 0.5f, -0.8f).normalized();
-  sun.irradiance = 2.0f;
+  const Light sun = sun_light();
   session.add_light(sun);
   session.remove_light(0);
   rig.lights = {rig.lights[1], sun};
   EXPECT_EQ(session.rig().lights.size(), 2u);
   EXPECT_EQ(max_difference(*session.wait_until_converged().image, offline_render(rig, options)), 0.0f);
-}
-
-Light sun_light() {
-  Light sun;
-  sun.name = "sun";
-  sun.type = LightType::directional;
-  sun.direction = Vec3(0.3f, 0.5f, -0.8f).normalized();
-  sun.irradiance = 2.0f;
-  return sun;
 }
 
 // Undo of a delete puts a light back in the middle: that light is rendered,

@@ -4,20 +4,28 @@ namespace relight::gl {
 
 namespace {
 
+// The log of a shader or program whose `status` (compile or link) is not
+// set, "" where it is: get_iv and get_log are the glGetShader* or
+// glGetProgram* pair.
+template <class GetIv, class GetLog>
+std::string failure_log(GLuint object, GLenum status, GetIv get_iv, GetLog get_log) {
+  GLint ok = 0;
+  get_iv(object, status, &ok);
+  if (ok) return {};
+  char log[4096];
+  get_log(object, GLsizei(sizeof log), nullptr, log);
+  return log[0] ? log : "(no log)";
+}
+
 GLuint compile_shader(GLenum type, const char* source, std::string& why) {
   const GLuint shader = glCreateShader(type);
   glShaderSource(shader, 1, &source, nullptr);
   glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096];
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    why = std::string("shader does not compile: ") + log;
-    glDeleteShader(shader);
-    return 0;
-  }
-  return shader;
+  const std::string log = failure_log(shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog);
+  if (log.empty()) return shader;
+  why = "shader does not compile: " + log;
+  glDeleteShader(shader);
+  return 0;
 }
 
 }  // namespace
@@ -35,16 +43,11 @@ GLuint link_program(const char* vertex, const char* fragment, std::string& why) 
   glLinkProgram(program);
   glDeleteShader(vs);
   glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096];
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    why = std::string("shader program does not link: ") + log;
-    glDeleteProgram(program);
-    return 0;
-  }
-  return program;
+  const std::string log = failure_log(program, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog);
+  if (log.empty()) return program;
+  why = "shader program does not link: " + log;
+  glDeleteProgram(program);
+  return 0;
 }
 
 GLuint float_texture(int width, int height, GLenum internal_format, GLenum format, const float* data) {
