@@ -63,7 +63,7 @@ void add_camera_from_fspy_command(CLI::App& app, Action& action) {
       {{"relight camera-from-fspy kitchen.fspy --scene kitchen/scene.json", "set the scene's camera"},
        {"relight camera-from-fspy kitchen_camera.json -o camera.json",
         "from fSpy's File > Export > Camera parameters"}}));
-  cmd->callback([&action, args] { action = [args](Progress& progress) { run_camera_from_fspy(*args, progress); }; });
+  run_when_parsed(*cmd, action, args, run_camera_from_fspy);
 }
 
 }  // namespace relight::cli

@@ -53,7 +53,7 @@ void add_compare_command(CLI::App& app, Action& action) {
       {{"relight compare out/albedo.exr scenes/outdoor/albedo_gt.exr --mask scenes/outdoor/mask.exr",
         "albedo PSNR over the pixels that see geometry"},
        {"relight compare relit.exr scenes/outdoor/relit/night.exr --tonemap", "PSNR of a re-lit HDR image"}}));
-  cmd->callback([&action, args] { action = [args](Progress& progress) { run_compare(*args, progress); }; });
+  run_when_parsed(*cmd, action, args, run_compare);
 }
 
 }  // namespace relight::cli

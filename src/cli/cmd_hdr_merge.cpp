@@ -98,7 +98,7 @@ void add_hdr_merge_command(CLI::App& app, Action& action) {
       "  ISO and white balance, and times a stop or two apart.",
       {{"relight hdr-merge IMG_01.jpg IMG_02.jpg IMG_03.jpg -o photo.exr", "times from the files' EXIF"},
        {"relight hdr-merge a.png b.png c.png --times 1/250,1/60,1/15 -o photo.exr", "times given"}}));
-  cmd->callback([&action, args] { action = [args](Progress& progress) { run_hdr_merge(*args, progress); }; });
+  run_when_parsed(*cmd, action, args, run_hdr_merge);
 }
 
 }  // namespace relight::cli

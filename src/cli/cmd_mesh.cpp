@@ -145,7 +145,7 @@ void add_mesh_command(CLI::App& app, Action& action) {
       {{"relight mesh scenes/outdoor/scene.json -o out/mesh", "writes out/mesh/{mesh.obj, mesh.png, mesh.json}"},
        {"relight mesh scene.json -o out/mesh --albedo-gt albedo_gt.exr --mask mask.exr",
         "also reports how many shadow-edge pixels lie near a mesh edge"}}));
-  cmd->callback([&action, args] { action = [args](Progress& progress) { run_mesh(*args, progress); }; });
+  run_when_parsed(*cmd, action, args, run_mesh);
 }
 
 }  // namespace relight::cli

@@ -185,7 +185,7 @@ void add_preview_command(CLI::App& app, Action& action) {
         "60 frames at 1280x720 on the CPU backend"},
        {"relight preview scene.json --rig rig.json --backend gl --frames 120 -o preview",
         "the OpenGL shadow-map backend"}}));
-  cmd->callback([&action, args] { action = [args](Progress& progress) { run_preview(*args, progress); }; });
+  run_when_parsed(*cmd, action, args, run_preview);
 }
 
 }  // namespace relight::cli

@@ -64,7 +64,7 @@ void add_probe_from_photo_command(CLI::App& app, Action& action) {
       "  to the ball) and its up that camera's up; its position is the ball's centre.",
       {{"relight probe-from-photo ball.jpg -o probe.exr", "find the ball"},
        {"relight probe-from-photo ball.exr --circle 812,590,143.5 -o probe.exr", "the circle given"}}));
-  cmd->callback([&action, args] { action = [args](Progress& progress) { run_probe_from_photo(*args, progress); }; });
+  run_when_parsed(*cmd, action, args, run_probe_from_photo);
 }
 
 }  // namespace relight::cli

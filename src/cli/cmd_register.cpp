@@ -88,7 +88,7 @@ void add_register_command(CLI::App& app, Action& action) {
       {{"relight register scene.json -o scene_registered.json", "refine the camera of a hand-made camera match"},
        {"relight register scene.json --fixed-position -o scene_registered.json",
         "keep the camera where it is; only turn and zoom it"}}));
-  cmd->callback([&action, args] { action = [args](Progress& progress) { run_register(*args, progress); }; });
+  run_when_parsed(*cmd, action, args, run_register);
 }
 
 }  // namespace relight::cli

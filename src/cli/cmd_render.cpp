@@ -65,7 +65,7 @@ void add_render_command(CLI::App& app, Action& action) {
         "evening.exr and evening.png, reusing the analysis folder"},
        {"relight render scene.json --rig rig.json -o relit.exr --exposure 1",
         "analyse, render, and a PNG one stop brighter"}}));
-  cmd->callback([&action, args] { action = [args](Progress& progress) { run_render(*args, progress); }; });
+  run_when_parsed(*cmd, action, args, run_render);
 }
 
 }  // namespace relight::cli

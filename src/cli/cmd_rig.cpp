@@ -29,7 +29,7 @@ void add_rig_command(CLI::App& app, Action& action) {
       "Writes a rig.json holding the scene's own lights and environment_scale 1, the starting point of a new\n"
       "  lighting design; rendering it unchanged gives back the photo.",
       {{"relight rig scene.json -o my_rig.json", "my_rig.json with the scene's lights, to edit"}}));
-  cmd->callback([&action, args] { action = [args](Progress& progress) { run_rig(*args, progress); }; });
+  run_when_parsed(*cmd, action, args, run_rig);
 }
 
 }  // namespace relight::cli
