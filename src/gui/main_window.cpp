@@ -3,14 +3,11 @@
 #include <QCloseEvent>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
-#include <QProgressBar>
 #include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
-#include <QToolButton>
 #include <cmath>
 
 #include "core/error.h"
@@ -21,6 +18,7 @@
 #include "gui/lights_panel.h"
 #include "gui/photo_panel.h"
 #include "gui/photo_view.h"
+#include "gui/task_status.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
 
@@ -59,19 +57,8 @@ MainWindow::MainWindow(StudioOptions options, QWidget* parent)
   setCentralWidget(splitter);
   make_menus();
 
-  task_label_ = new QLabel;
-  task_progress_ = new QProgressBar;
-  task_progress_->setRange(0, 100);
-  task_progress_->setMaximumWidth(220);
-  task_cancel_ = new QToolButton;
-  task_cancel_->setText(tr("Cancel"));
-  for (QWidget* w : {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(task_progress_),
-                     static_cast<QWidget*>(task_cancel_)}) {
-    statusBar()->addPermanentWidget(w);
-    w->hide();
-  }
-  connect(task_cancel_, &QToolButton::clicked, &task_, &BackgroundTask::cancel);
-  connect(&task_, &BackgroundTask::progressed, task_progress_, &QProgressBar::setValue);
+  task_status_ = new TaskStatus(task_);
+  statusBar()->addPermanentWidget(task_status_);
 
   connect(&undo_, &QUndoStack::cleanChanged, this, [this] { update_title(); });
   connect(&frame_timer_, &QTimer::timeout, this, [this] { refresh_frame(); });
@@ -186,17 +173,10 @@ void MainWindow::make_menus() {
 
 void MainWindow::run_task(const QString& label, BackgroundTask::Work work,
                           std::function<void(const QString&)> done) {
-  task_label_->setText(label);
-  task_progress_->setValue(0);
-  for (QWidget* w : {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(task_progress_),
-                     static_cast<QWidget*>(task_cancel_)})
-    w->show();
+  task_status_->show_task(label);
   auto connection = std::make_shared<QMetaObject::Connection>();
   *connection = connect(&task_, &BackgroundTask::finished, this, [this, done, connection](const QString& error) {
     disconnect(*connection);
-    for (QWidget* w : {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(task_progress_),
-                       static_cast<QWidget*>(task_cancel_)})
-      w->hide();
     update_actions();
     done(error);
   });

@@ -15,10 +15,7 @@
 #include "gui/background_task.h"
 #include "gui/lighting_document.h"
 
-class QLabel;
 class QMenu;
-class QProgressBar;
-class QToolButton;
 
 namespace relight::gui {
 
@@ -27,6 +24,7 @@ class LightListModel;
 class LightsPanel;
 class PhotoPanel;
 class PhotoView;
+class TaskStatus;
 
 struct StudioOptions {
   AnalysisOptions analysis;  // for a scene without a cached analysis
@@ -112,9 +110,7 @@ class MainWindow : public QMainWindow {
 
   LightsPanel* lights_;
   PhotoPanel* photo_panel_;
-  QLabel* task_label_;
-  QProgressBar* task_progress_;
-  QToolButton* task_cancel_;
+  TaskStatus* task_status_;
   QAction *save_rig_action_, *save_rig_as_action_, *open_rig_action_, *export_action_;
   QAction *new_light_action_, *change_light_action_, *delete_light_action_;
 };
