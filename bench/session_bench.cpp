@@ -191,7 +191,7 @@ void BM_BackendRender(benchmark::State& state) {
   std::unique_ptr<DirectLightBackend> backend;
   if (state.range(0)) {
     std::string why;
-    backend = GlRelighter::open(f.scene.mesh, view.surfaces(), view.layers().albedo_coverage, {}, why);
+    backend = GlRelighter::open(f.scene.mesh, view.surfaces(), {}, why);
     if (!backend) {
       state.SkipWithError(("OpenGL unavailable: " + why).c_str());
       return;

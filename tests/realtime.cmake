@@ -9,3 +9,7 @@ add_executable(realtime_test realtime_test.cpp)
 target_link_libraries(realtime_test PRIVATE relight_realtime relight_io GTest::gtest_main)
 target_compile_definitions(realtime_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 gtest_discover_tests(realtime_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900 LABELS reference)
+
+# Where the shadow maps look from: geometry only, no OpenGL context needed.
+relight_add_test(light_views_test light_views_test.cpp relight_realtime)
+target_include_directories(light_views_test PRIVATE ${PROJECT_SOURCE_DIR}/src)

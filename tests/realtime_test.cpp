@@ -12,8 +12,8 @@
 #include "io/image_io.h"
 #include "io/scene_io.h"
 #include "realtime/shadow_maps.h"
-#include "render/direct_light.h"
 #include "reference_scenes.h"
+#include "render/direct_light.h"
 
 namespace fs = std::filesystem;
 using namespace relight;
@@ -28,16 +28,14 @@ void keep_image(const std::string& name, const Image& image) {
   }
 }
 
-// The CPU reference: albedo x the sum of the lights' direct light, each light
-// sampled densely enough for its soft shadows to be smooth.
-Image cpu_direct_relit(const PixelSurfaces& surfaces, const RayScene& rays, const Image& albedo,
-                       const std::vector<Light>& lights) {
-  Image sum(surfaces.width, surfaces.height), one;
-  DirectLightSettings settings;
-  settings.light_samples = 256;
+// albedo x the sum of the enabled lights' direct light, each rendered by
+// render_one(light, image).
+template <class Render>
+Image direct_relit(const Image& albedo, const std::vector<Light>& lights, Render render_one) {
+  Image sum(albedo.width, albedo.height), one;
   for (const Light& light : lights) {
     if (!light.enabled) continue;
-    render_direct_light(surfaces, rays, light, settings, one);
+    render_one(light, one);
     for (size_t i = 0; i < sum.size(); ++i) sum.pixels[i] += one.pixels[i];
   }
   for (size_t i = 0; i < sum.size(); ++i) sum.pixels[i] = sum.pixels[i].cwiseProduct(albedo.pixels[i]);
@@ -58,19 +56,25 @@ TEST_P(GlAgreesWithCpu, OnEveryRigOfTheScene) {
   const RayScene rays(scene.mesh);
   const GBuffer gbuffer(scene.camera, rays, 1, 1, scene.path.string());  // one sample, at the pixel centre
   const PixelSurfaces surfaces = PixelSurfaces::central_samples(gbuffer);
-  // The true albedo stands in for an analysis: both backends modulate the same one.
+  // The true albedo stands in for an analysis: both backends' light is modulated by the same one.
   const Image albedo = read_image(folder / "albedo_gt.exr");
 
   std::string why;
-  const auto gl = GlRelighter::open(scene.mesh, surfaces, albedo, ShadowMapOptions{}, why);
+  const auto gl = GlRelighter::open(scene.mesh, surfaces, ShadowMapOptions{}, why);
   if (!gl) GTEST_SKIP() << "OpenGL unavailable (" << why << "): the CPU backend is used instead";
 
   int rigs = 0;
   for (const auto& entry : fs::directory_iterator(folder / "rigs")) {
     const std::string name = entry.path().stem().string();
     const Rig rig = load_rig(entry.path());
-    const Image on_gl = gl->relight(rig.lights);
-    const Image on_cpu = cpu_direct_relit(surfaces, rays, albedo, rig.lights);
+    const Image on_gl =
+        direct_relit(albedo, rig.lights, [&](const Light& light, Image& out) { gl->render(light, out); });
+    // The CPU reference samples each light densely enough for its soft shadows to be smooth.
+    DirectLightSettings dense;
+    dense.light_samples = 256;
+    const Image on_cpu = direct_relit(albedo, rig.lights, [&](const Light& light, Image& out) {
+      render_direct_light(surfaces, rays, light, dense, out);
+    });
     keep_image(GetParam() + "_" + name + "_gl", on_gl);
     keep_image(GetParam() + "_" + name + "_cpu", on_cpu);
     const double db = relit_psnr(on_gl, on_cpu);

@@ -88,6 +88,15 @@ Light moved(Light light, const Vec3& by) {
   return light;
 }
 
+Light sun_light() {
+  Light sun;
+  sun.name = "sun";
+  sun.type = LightType::directional;
+  sun.direction = Vec3(0.3f, 0.5f, -0.8f).normalized();
+  sun.irradiance = 2.0f;
+  return sun;
+}
+
 TEST(Session, ConvergesToExactlyTheOfflineRender) {
   const Room& r = room();
   const SessionOptions options = quick_options();
@@ -176,15 +185,80 @@ TEST(Session, AddsAndRemovesLights) {
   const SessionOptions options = quick_options();
   Rig rig = example::evening_rig();
   RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
-  Light sun;
-  sun.type = LightType::directional;
-  sun.direction = Vec3(0.3f, 0.5f, -0.8f).normalized();
-  sun.irradiance = 2.0f;
+  const Light sun = sun_light();
   session.add_light(sun);
   session.remove_light(0);
   rig.lights = {rig.lights[1], sun};
   EXPECT_EQ(session.rig().lights.size(), 2u);
   EXPECT_EQ(max_difference(*session.wait_until_converged().image, offline_render(rig, options)), 0.0f);
+}
+
+// Undo of a delete puts a light back in the middle: that light is rendered,
+// the others keep their images.
+TEST(Session, InsertingALightRendersOnlyThatLight) {
+  const Room& r = room();
+  const SessionOptions options = quick_options();
+  Rig rig = example::evening_rig();
+  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  session.wait_until_converged();
+  const SessionStats before = session.stats();
+  session.insert_light(1, sun_light());
+  rig.lights.insert(rig.lights.begin() + 1, sun_light());
+  const Frame frame = session.wait_until_converged();
+  EXPECT_EQ(session.stats().interactive_renders, before.interactive_renders + 1);
+  ASSERT_EQ(session.rig().lights.size(), 3u);
+  EXPECT_EQ(session.rig().lights[1].name, "sun");
+  EXPECT_EQ(max_difference(*frame.image, offline_render(rig, options)), 0.0f);
+  EXPECT_THROW(session.insert_light(4, sun_light()), std::out_of_range);
+}
+
+// Opening a rig: a light that did not move keeps its images (a new colour
+// or power costs no ray); a moved or new one is rendered.
+TEST(Session, ANewRigRendersOnlyTheLightsThatMovedOrAreNew) {
+  const Room& r = room();
+  const SessionOptions options = quick_options();
+  const Rig evening = example::evening_rig();
+  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, evening, options);
+  session.wait_until_converged();
+  const SessionStats before = session.stats();
+
+  Rig rig = evening;
+  rig.lights[0].color = Vec3(1.0f, 0.5f, 0.25f);
+  rig.lights[0].power *= 2.0f;
+  rig.lights[1] = moved(rig.lights[1], Vec3(0.2f, 0.0f, 0.0f));
+  rig.lights.push_back(sun_light());
+  rig.environment_scale = 0.5f;
+  session.set_rig(rig);
+  const Frame frame = session.wait_until_converged();
+  EXPECT_EQ(session.stats().interactive_renders, before.interactive_renders + 2);
+  EXPECT_EQ(max_difference(*frame.image, offline_render(rig, options)), 0.0f);
+  EXPECT_EQ(session.rig().environment_scale, 0.5f);
+
+  // The same rig again: nothing but the final render is done again.
+  const SessionStats converged = session.stats();
+  session.set_rig(rig);
+  EXPECT_EQ(max_difference(*session.wait_until_converged().image, *frame.image), 0.0f);
+  EXPECT_EQ(session.stats().interactive_renders, converged.interactive_renders);
+  EXPECT_EQ(session.stats().refinements, converged.refinements + 1);
+}
+
+// The drop at the end of a drag sets the light the last move left: no edit,
+// so the refinement of that position goes on.
+TEST(Session, SettingALightAsItIsMakesNoEdit) {
+  const Room& r = room();
+  Rig rig = example::evening_rig();
+  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, quick_options());
+  const uint64_t move = session.set_light(1, moved(rig.lights[1], Vec3(0.3f, 0.0f, 0.0f)));
+  session.wait_for_edit(move);
+  const uint64_t cancelled = session.stats().cancelled;  // whatever the move itself cancelled
+  Light renamed = moved(rig.lights[1], Vec3(0.3f, 0.0f, 0.0f));
+  renamed.name = "renamed";
+  EXPECT_EQ(session.set_light(1, renamed), move);
+  EXPECT_EQ(session.last_edit(), move);
+  EXPECT_EQ(session.rig().lights[1].name, "renamed");
+  const Frame frame = session.wait_until_converged();
+  EXPECT_EQ(frame.edit, move);
+  EXPECT_EQ(session.stats().cancelled, cancelled);
 }
 
 // A view twice the photo's size shows the same picture: averaged down 2x2

@@ -357,6 +357,9 @@ class StudioTest : public QObject {
     QVERIFY(window_->open_rig(evening_));
     const Rig rig = document().rig();
     QCOMPARE(rig.lights.size(), size_t(2));
+    RelightSession& session = document().session();
+    session.wait_for_edit(session.last_edit());
+    const uint64_t renders = session.stats().interactive_renders;
     window_->select_light(0);
     QTest::keyClick(&window_->geometry_view(), Qt::Key_Delete);
     QCOMPARE(document().light_count(), 1);
@@ -364,11 +367,27 @@ class StudioTest : public QObject {
     QCOMPARE(window_->selected_light(), 0);
     window_->undo_stack().undo();
     QCOMPARE(document().light_count(), 2);
+    // Only the light put back is rendered; the one behind it keeps its image.
+    session.wait_for_edit(session.last_edit());
+    QCOMPARE(session.stats().interactive_renders, renders + 1);
     expect_same_light(document().light(0), rig.lights[0]);
     expect_same_light(document().light(1), rig.lights[1]);
     const Rig session_rig = document().session().rig();
     QCOMPARE(session_rig.lights[0].name, std::string("lamp"));
     QCOMPARE(session_rig.lights[1].name, std::string("cool spot"));
+  }
+
+  void opening_a_rig_keeps_the_images_of_lights_that_did_not_move() {
+    QVERIFY(window_->open_rig(evening_));
+    RelightSession& session = document().session();
+    session.wait_until_converged();
+    const SessionStats before = session.stats();
+    QVERIFY(window_->open_rig(evening_));
+    QCOMPARE(&document().session(), &session);
+    session.wait_until_converged();
+    // Nothing moved: only the final render is made again.
+    QCOMPARE(session.stats().interactive_renders, before.interactive_renders);
+    QCOMPARE(session.stats().refinements, before.refinements + 1);
   }
 
   void a_rig_saves_and_loads_back_the_same() {
@@ -442,7 +461,12 @@ class StudioTest : public QObject {
     };
     send(QEvent::MouseButtonPress, at, Qt::LeftButton);
     send(QEvent::MouseMove, at + QPoint(40, 0), Qt::LeftButton);
+    const uint64_t moved_edit = document().session().last_edit();
     send(QEvent::MouseButtonRelease, at + QPoint(40, 0), Qt::NoButton);
+    // The drop makes the drag one undo step but no new edit: it does not
+    // cancel the render of where the drag left the light.
+    QCOMPARE(document().session().last_edit(), moved_edit);
+    QCOMPARE(window_->undo_stack().count(), 1);
     // Dragged sideways on screen: the light moved, and its dot with the mouse.
     const Vec3 moved = document().light(1).position;
     QVERIFY((moved - start.position).norm() > 0.05f);

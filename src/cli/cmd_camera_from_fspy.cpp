@@ -25,13 +25,31 @@ void update_scene_camera(const std::string& scene_path, const nlohmann::json& ca
   write_text_atomically(scene_path, scene.dump(2) + "\n");
 }
 
+struct CameraFromFspyArgs {
+  std::string fspy, out, scene;
+};
+
+void run_camera_from_fspy(const CameraFromFspyArgs& args, Progress& progress) {
+  const FspyCamera fspy = read_fspy_camera(args.fspy);
+  const nlohmann::json camera = camera_to_json(fspy.camera);
+  const auto& pp = fspy.camera.principal_point;
+  const std::string summary = fmt::format("vfov {:.2f} deg, principal point ({:.3f}, {:.3f}), fSpy image {}x{}",
+                                          fspy.camera.vfov_deg, pp.x(), pp.y(), fspy.image_width, fspy.image_height);
+  if (!args.scene.empty()) {
+    update_scene_camera(args.scene, camera);
+    std::printf("camera of %s replaced: %s\n", args.scene.c_str(), summary.c_str());
+  } else if (!args.out.empty()) {
+    write_text_atomically(args.out, camera.dump(2) + "\n");
+    std::printf("camera written to %s: %s\n", args.out.c_str(), summary.c_str());
+  } else {
+    std::printf("%s\n", camera.dump(2).c_str());
+  }
+}
+
 }  // namespace
 
 void add_camera_from_fspy_command(CLI::App& app, Action& action) {
-  struct Args {
-    std::string fspy, out, scene;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<CameraFromFspyArgs>();
   CLI::App* cmd = app.add_subcommand("camera-from-fspy", "the scene's camera from an fSpy camera match");
   cmd->add_option("fspy", args->fspy, "an fSpy project (.fspy) or the camera JSON fSpy exports")->required();
   auto* out = cmd->add_option("-o,--out", args->out, "write the camera block to this JSON file");
@@ -43,25 +61,9 @@ void add_camera_from_fspy_command(CLI::App& app, Action& action) {
       "  the scene's: model the geometry in the same frame (as fSpy's Blender importer does). The photo must\n"
       "  have the aspect ratio of the image fSpy was given.",
       {{"relight camera-from-fspy kitchen.fspy --scene kitchen/scene.json", "set the scene's camera"},
-       {"relight camera-from-fspy kitchen_camera.json -o camera.json", "from fSpy's File > Export > Camera parameters"}}));
-  cmd->callback([&action, args] {
-    action = [args](Progress&) {
-      const FspyCamera fspy = read_fspy_camera(args->fspy);
-      const nlohmann::json camera = camera_to_json(fspy.camera);
-      const auto& pp = fspy.camera.principal_point;
-      const std::string summary = fmt::format("vfov {:.2f} deg, principal point ({:.3f}, {:.3f}), fSpy image {}x{}",
-                                              fspy.camera.vfov_deg, pp.x(), pp.y(), fspy.image_width, fspy.image_height);
-      if (!args->scene.empty()) {
-        update_scene_camera(args->scene, camera);
-        std::printf("camera of %s replaced: %s\n", args->scene.c_str(), summary.c_str());
-      } else if (!args->out.empty()) {
-        write_text_atomically(args->out, camera.dump(2) + "\n");
-        std::printf("camera written to %s: %s\n", args->out.c_str(), summary.c_str());
-      } else {
-        std::printf("%s\n", camera.dump(2).c_str());
-      }
-    };
-  });
+       {"relight camera-from-fspy kitchen_camera.json -o camera.json",
+        "from fSpy's File > Export > Camera parameters"}}));
+  run_when_parsed(*cmd, action, args, run_camera_from_fspy);
 }
 
 }  // namespace relight::cli

@@ -51,15 +51,38 @@ std::vector<float> exposure_times(const std::vector<std::string>& paths, const s
   return times;
 }
 
+struct HdrMergeArgs {
+  std::vector<std::string> images, times;
+  std::string out;
+  bool no_align = false;
+};
+
+void run_hdr_merge(const HdrMergeArgs& args, Progress& progress) {
+  if (args.images.size() < 2)
+    throw InputError(args.images[0], "", "is one image; hdr-merge needs two or more brackets of the scene");
+  std::vector<EncodedImage> brackets;
+  for (const std::string& path : args.images) {
+    brackets.push_back(read_encoded_image(path));
+    const EncodedImage& b = brackets.back();
+    if (b.width != brackets[0].width || b.height != brackets[0].height)
+      throw InputError(path, "",
+                       fmt::format("is {}x{}, but {} is {}x{}; brackets must be the same size", b.width, b.height,
+                                   args.images[0], brackets[0].width, brackets[0].height));
+  }
+  const std::vector<float> times = exposure_times(args.images, brackets, args.times);
+  const MergedBrackets merged = merge_brackets(brackets, times, !args.no_align);
+  write_exr(args.out, merged.radiance);  // full floats: short exposures give values beyond half range
+  std::printf("merged %zu brackets into %s (%dx%d)\n", brackets.size(), args.out.c_str(), merged.radiance.width,
+              merged.radiance.height);
+  for (size_t i = 0; i < brackets.size(); ++i)
+    std::printf("  %s: %g s, shifted by (%d, %d) px\n", args.images[i].c_str(), times[i], merged.shifts[i][0],
+                merged.shifts[i][1]);
+}
+
 }  // namespace
 
 void add_hdr_merge_command(CLI::App& app, Action& action) {
-  struct Args {
-    std::vector<std::string> images, times;
-    std::string out;
-    bool no_align = false;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<HdrMergeArgs>();
   CLI::App* cmd = app.add_subcommand("hdr-merge", "merge a camera's exposure brackets into a linear HDR photo");
   cmd->add_option("images", args->images, "the brackets (JPEG, PNG, TIFF: 8/16-bit, as the camera wrote them)")
       ->required();
@@ -75,29 +98,7 @@ void add_hdr_merge_command(CLI::App& app, Action& action) {
       "  ISO and white balance, and times a stop or two apart.",
       {{"relight hdr-merge IMG_01.jpg IMG_02.jpg IMG_03.jpg -o photo.exr", "times from the files' EXIF"},
        {"relight hdr-merge a.png b.png c.png --times 1/250,1/60,1/15 -o photo.exr", "times given"}}));
-  cmd->callback([&action, args] {
-    action = [args](Progress&) {
-      if (args->images.size() < 2)
-        throw InputError(args->images[0], "", "is one image; hdr-merge needs two or more brackets of the scene");
-      std::vector<EncodedImage> brackets;
-      for (const std::string& path : args->images) {
-        brackets.push_back(read_encoded_image(path));
-        const EncodedImage& b = brackets.back();
-        if (b.width != brackets[0].width || b.height != brackets[0].height)
-          throw InputError(path, "",
-                           fmt::format("is {}x{}, but {} is {}x{}; brackets must be the same size", b.width, b.height,
-                                       args->images[0], brackets[0].width, brackets[0].height));
-      }
-      const std::vector<float> times = exposure_times(args->images, brackets, args->times);
-      const MergedBrackets merged = merge_brackets(brackets, times, !args->no_align);
-      write_exr(args->out, merged.radiance);  // full floats: short exposures give values beyond half range
-      std::printf("merged %zu brackets into %s (%dx%d)\n", brackets.size(), args->out.c_str(), merged.radiance.width,
-                  merged.radiance.height);
-      for (size_t i = 0; i < brackets.size(); ++i)
-        std::printf("  %s: %g s, shifted by (%d, %d) px\n", args->images[i].c_str(), times[i], merged.shifts[i][0],
-                    merged.shifts[i][1]);
-    };
-  });
+  run_when_parsed(*cmd, action, args, run_hdr_merge);
 }
 
 }  // namespace relight::cli

@@ -48,14 +48,66 @@ nlohmann::json shadow_edge_figures(const std::string& albedo_path, const std::st
       {"shadow_edge_share_within_1_5_px", share_within_1_5_px(shadow, edges, scene.photo.width, scene.photo.height)}};
 }
 
+struct MeshArgs {
+  std::string scene, out, criterion = "line-fit", flip_test = "side", albedo_gt, mask;
+  RefineOptions options;
+};
+
+void run_mesh(const MeshArgs& args, Progress& progress) {
+  RefineOptions options = args.options;
+  options.subdivision.criterion = kCriteria.at(args.criterion);
+  options.relax.flip_test = kFlipTests.at(args.flip_test);
+  const Scene scene = load_scene(args.scene, progress);
+  const RayScene rays(scene.mesh);
+  const GBuffer gbuffer(scene.camera, rays, 1, 1, args.scene);
+  const PhotoSamples photo = photo_samples(scene.photo, gbuffer);
+  RefineReport report;
+  const ConnectivityMesh mesh = refine_mesh_for_photo(scene.mesh, scene.camera, photo, options, report);
+  const std::vector<uint8_t> edges = visible_edge_pixels(mesh, scene.camera, photo);
+
+  nlohmann::json j = {{"triangles_input", report.triangles_input},
+                      {"triangles_in_view", report.triangles_clipped},
+                      {"triangles", mesh.triangles().size()},
+                      {"vertices", mesh.vertices().size()},
+                      {"edges", mesh.edges().size()},
+                      {"edges_split_clipping", report.clip.edges_split},
+                      {"long_edges_split", report.long_edges_split},
+                      {"edges_tested", report.subdivision.edges_tested},
+                      {"edges_split", report.subdivision.edges_split},
+                      {"vertices_moved", report.relax.vertices_moved},
+                      {"moves_refused", report.relax.moves_refused},
+                      {"welded_vertices", report.cleanup.welded_vertices},
+                      {"degenerate_triangles", report.cleanup.degenerate_triangles},
+                      {"non_manifold_edges", report.cleanup.non_manifold_edges},
+                      {"seconds", report.seconds},
+                      {"options",
+                       {{"criterion", args.criterion},
+                        {"threshold", options.subdivision.threshold},
+                        {"min_edge_px", options.subdivision.min_edge_px},
+                        {"relax", options.relax.iterations},
+                        {"flip_test", args.flip_test}}}};
+  // Every input is read before anything is written.
+  if (!args.albedo_gt.empty()) j.update(shadow_edge_figures(args.albedo_gt, args.mask, scene, gbuffer, edges));
+
+  const fs::path out = args.out;
+  create_output_folder(out);
+  OutputBatch outputs;
+  save_obj(out / "mesh.obj", mesh.to_triangle_mesh());
+  write_png(out / "mesh.png", draw_edges_over_photo(scene.photo, edges));
+  write_text_atomically(out / "mesh.json", j.dump(2) + "\n");
+  outputs.commit();
+  std::printf("mesh: %zu triangles in view -> %zu (%zu edges split, %zu vertices moved) in %.3f s, written to %s\n",
+              report.triangles_clipped, mesh.triangles().size(), report.subdivision.edges_split,
+              report.relax.vertices_moved, report.seconds, args.out.c_str());
+  if (j.contains("shadow_edge_share_within_1_5_px"))
+    std::printf("shadow-edge pixels within 1.5 px of a mesh edge: %.1f %% of %zu\n",
+                100.0 * j["shadow_edge_share_within_1_5_px"].get<double>(), j["shadow_edge_pixels"].get<size_t>());
+}
+
 }  // namespace
 
 void add_mesh_command(CLI::App& app, Action& action) {
-  struct Args {
-    std::string scene, out, criterion = "line-fit", flip_test = "side", albedo_gt, mask;
-    RefineOptions options;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<MeshArgs>();
   CLI::App* cmd = app.add_subcommand("mesh", "refine the scene mesh along the photo's shadow edges (thesis ch. 4)");
   cmd->add_option("scene", args->scene, "scene.json")->required();
   cmd->add_option("-o,--out", args->out, "output folder (created)")->required();
@@ -93,59 +145,7 @@ void add_mesh_command(CLI::App& app, Action& action) {
       {{"relight mesh scenes/outdoor/scene.json -o out/mesh", "writes out/mesh/{mesh.obj, mesh.png, mesh.json}"},
        {"relight mesh scene.json -o out/mesh --albedo-gt albedo_gt.exr --mask mask.exr",
         "also reports how many shadow-edge pixels lie near a mesh edge"}}));
-  cmd->callback([&action, args] {
-    action = [args](Progress& progress) {
-      args->options.subdivision.criterion = kCriteria.at(args->criterion);
-      args->options.relax.flip_test = kFlipTests.at(args->flip_test);
-      const Scene scene = load_scene(args->scene, progress);
-      const RayScene rays(scene.mesh);
-      const GBuffer gbuffer(scene.camera, rays, 1, 1, args->scene);
-      const PhotoSamples photo = photo_samples(scene.photo, gbuffer);
-      RefineReport report;
-      const ConnectivityMesh mesh = refine_mesh_for_photo(scene.mesh, scene.camera, photo, args->options, report);
-      const std::vector<uint8_t> edges = visible_edge_pixels(mesh, scene.camera, photo);
-
-      nlohmann::json j = {{"triangles_input", report.triangles_input},
-                          {"triangles_in_view", report.triangles_clipped},
-                          {"triangles", mesh.triangles().size()},
-                          {"vertices", mesh.vertices().size()},
-                          {"edges", mesh.edges().size()},
-                          {"edges_split_clipping", report.clip.edges_split},
-                          {"long_edges_split", report.long_edges_split},
-                          {"edges_tested", report.subdivision.edges_tested},
-                          {"edges_split", report.subdivision.edges_split},
-                          {"vertices_moved", report.relax.vertices_moved},
-                          {"moves_refused", report.relax.moves_refused},
-                          {"welded_vertices", report.cleanup.welded_vertices},
-                          {"degenerate_triangles", report.cleanup.degenerate_triangles},
-                          {"non_manifold_edges", report.cleanup.non_manifold_edges},
-                          {"seconds", report.seconds},
-                          {"options",
-                           {{"criterion", args->criterion},
-                            {"threshold", args->options.subdivision.threshold},
-                            {"min_edge_px", args->options.subdivision.min_edge_px},
-                            {"relax", args->options.relax.iterations},
-                            {"flip_test", args->flip_test}}}};
-      // Every input is read before anything is written.
-      if (!args->albedo_gt.empty()) j.update(shadow_edge_figures(args->albedo_gt, args->mask, scene, gbuffer, edges));
-
-      const fs::path out = args->out;
-      std::error_code ec;
-      fs::create_directories(out, ec);
-      if (!fs::is_directory(out)) throw InputError(out.string(), "", "cannot create the output folder");
-      OutputBatch outputs;
-      save_obj(out / "mesh.obj", mesh.to_triangle_mesh());
-      write_png(out / "mesh.png", draw_edges_over_photo(scene.photo, edges));
-      write_text_atomically(out / "mesh.json", j.dump(2) + "\n");
-      outputs.commit();
-      std::printf("mesh: %zu triangles in view -> %zu (%zu edges split, %zu vertices moved) in %.3f s, written to %s\n",
-                  report.triangles_clipped, mesh.triangles().size(), report.subdivision.edges_split,
-                  report.relax.vertices_moved, report.seconds, args->out.c_str());
-      if (j.contains("shadow_edge_share_within_1_5_px"))
-        std::printf("shadow-edge pixels within 1.5 px of a mesh edge: %.1f %% of %zu\n",
-                    100.0 * j["shadow_edge_share_within_1_5_px"].get<double>(), j["shadow_edge_pixels"].get<size_t>());
-    };
-  });
+  run_when_parsed(*cmd, action, args, run_mesh);
 }
 
 }  // namespace relight::cli

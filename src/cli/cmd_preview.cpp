@@ -76,17 +76,89 @@ void add_shadow_map_options(CLI::App& cmd, ShadowMapOptions& o) {
       ->capture_default_str();
 }
 
+struct PreviewArgs {
+  std::string scene, rig, out, analysis, backend = "cpu", size;
+  int frames = 60;
+  float radius = 0.0f;
+  AnalysisOptions options;
+  ShadowMapOptions shadow_maps;
+};
+
+void run_preview(const PreviewArgs& args, Progress& progress) {
+  const Rig rig = load_rig(args.rig);
+  if (rig.lights.empty()) throw InputError(args.rig, "/lights", "preview moves the first light: the rig has none");
+  SessionOptions options;
+  options.backend = args.backend == "gl" ? Backend::gl : Backend::cpu;
+  options.shadow_maps = args.shadow_maps;
+  if (!args.size.empty()) {
+    std::smatch m;
+    if (!std::regex_match(args.size, m, std::regex(R"((\d{1,5})x(\d{1,5}))")) || std::stoi(m[1]) < 1 ||
+        std::stoi(m[2]) < 1)
+      throw InputError("--size", "", "expected WIDTHxHEIGHT, e.g. 1280x720, got '" + args.size + "'");
+    options.width = std::stoi(m[1]);
+    options.height = std::stoi(m[2]);
+    expect_within_pixel_limit("--size", "a view", options.width, options.height);
+  }
+  options.final_render.paths_per_pixel = args.options.paths_per_pixel;
+  options.final_render.max_bounces = args.options.max_bounces;
+  const fs::path out(args.out);
+  create_output_folder(out);
+
+  const AnalysedScene analysed(args.scene, args.analysis, args.options, progress);
+  const LoadedScene& s = analysed.loaded;
+  RelightSession session(s.scene, *s.rays, *s.gbuffer, analysed.analysis, rig, options);
+  if (!session.backend_note().empty()) std::printf("%s\n", session.backend_note().c_str());
+  std::printf("preview: %s backend, %dx%d; refining the starting view first...\n", to_string(session.backend()),
+              session.view().width(), session.view().height());
+  session.wait_until_converged();
+
+  const Light start = rig.lights[0];
+  const Vec3 up = s.scene.camera.spec().up.normalized();
+  const float radius =
+      args.radius > 0.0f ? args.radius : 0.25f * (start.position - s.scene.camera.spec().look_at).norm();
+  std::vector<double> frame_ms;
+  Frame first, last;
+  for (int i = 0; i < args.frames; ++i) {
+    if (progress.cancelled()) throw Cancelled();
+    const auto t0 = Clock::now();
+    const Frame frame = session.wait_for_edit(session.set_light(0, turntable(start, up, radius, i, args.frames)));
+    frame_ms.push_back(ms_since(t0));
+    (i == 0 ? first : last) = frame;
+  }
+  if (args.frames == 1) last = first;
+  const auto released = Clock::now();
+  const Frame converged = session.wait_until_converged();
+  const double converge_ms = ms_since(released);
+
+  const auto frame_name = [](int i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d", i);
+    return std::string(name);
+  };
+  OutputBatch outputs;
+  write_frame(out, frame_name(0), *first.image);
+  if (args.frames > 1) write_frame(out, frame_name(args.frames - 1), *last.image);
+  write_frame(out, "converged", *converged.image);
+  nlohmann::json timing;
+  timing["backend"] = to_string(session.backend());
+  timing["width"] = session.view().width();
+  timing["height"] = session.view().height();
+  timing["frames"] = args.frames;
+  timing["median_frame_ms"] = percentile(frame_ms, 0.5);
+  timing["p95_frame_ms"] = percentile(frame_ms, 0.95);
+  timing["converge_ms"] = converge_ms;
+  timing["light"] = {{"name", start.name}, {"type", to_string(start.type)}, {"radius_m", radius}};
+  timing["lights"] = rig.lights.size();
+  write_text_atomically(out / "timing.json", timing.dump(2) + "\n");
+  outputs.commit();
+  std::printf("%d frames: median %.1f ms, p95 %.1f ms; converged %.0f ms after the last; written to %s\n", args.frames,
+              double(timing["median_frame_ms"]), double(timing["p95_frame_ms"]), converge_ms, out.c_str());
+}
+
 }  // namespace
 
 void add_preview_command(CLI::App& app, Action& action) {
-  struct Args {
-    std::string scene, rig, out, analysis, backend = "cpu", size;
-    int frames = 60;
-    float radius = 0.0f;
-    AnalysisOptions options;
-    ShadowMapOptions shadow_maps;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<PreviewArgs>();
   CLI::App* cmd = app.add_subcommand(
       "preview", "drag the rig's first light around a circle through the interactive engine, and time it");
   cmd->add_option("scene", args->scene, "scene.json")->required();
@@ -113,81 +185,7 @@ void add_preview_command(CLI::App& app, Action& action) {
         "60 frames at 1280x720 on the CPU backend"},
        {"relight preview scene.json --rig rig.json --backend gl --frames 120 -o preview",
         "the OpenGL shadow-map backend"}}));
-  cmd->callback([&action, args] {
-    action = [args](Progress& progress) {
-      const Rig rig = load_rig(args->rig);
-      if (rig.lights.empty()) throw InputError(args->rig, "/lights", "preview moves the first light: the rig has none");
-      SessionOptions options;
-      options.backend = args->backend == "gl" ? Backend::gl : Backend::cpu;
-      options.shadow_maps = args->shadow_maps;
-      if (!args->size.empty()) {
-        std::smatch m;
-        if (!std::regex_match(args->size, m, std::regex(R"((\d{1,5})x(\d{1,5}))")) || std::stoi(m[1]) < 1 ||
-            std::stoi(m[2]) < 1)
-          throw InputError("--size", "", "expected WIDTHxHEIGHT, e.g. 1280x720, got '" + args->size + "'");
-        options.width = std::stoi(m[1]);
-        options.height = std::stoi(m[2]);
-        expect_within_pixel_limit("--size", "a view", options.width, options.height);
-      }
-      options.final_render.paths_per_pixel = args->options.paths_per_pixel;
-      options.final_render.max_bounces = args->options.max_bounces;
-      const fs::path out(args->out);
-      std::error_code ec;
-      fs::create_directories(out, ec);
-      if (!fs::is_directory(out)) throw InputError(args->out, "", "cannot create the output folder");
-
-      const AnalysedScene analysed(args->scene, args->analysis, args->options, progress);
-      const LoadedScene& s = analysed.loaded;
-      RelightSession session(s.scene, *s.rays, *s.gbuffer, analysed.analysis, rig, options);
-      if (!session.backend_note().empty()) std::printf("%s\n", session.backend_note().c_str());
-      std::printf("preview: %s backend, %dx%d; refining the starting view first...\n", to_string(session.backend()),
-                  session.view().width(), session.view().height());
-      session.wait_until_converged();
-
-      const Light start = rig.lights[0];
-      const Vec3 up = s.scene.camera.spec().up.normalized();
-      const float radius =
-          args->radius > 0.0f ? args->radius : 0.25f * (start.position - s.scene.camera.spec().look_at).norm();
-      std::vector<double> frame_ms;
-      Frame first, last;
-      for (int i = 0; i < args->frames; ++i) {
-        if (progress.cancelled()) throw Cancelled();
-        const auto t0 = Clock::now();
-        const Frame frame = session.wait_for_edit(session.set_light(0, turntable(start, up, radius, i, args->frames)));
-        frame_ms.push_back(ms_since(t0));
-        (i == 0 ? first : last) = frame;
-      }
-      if (args->frames == 1) last = first;
-      const auto released = Clock::now();
-      const Frame converged = session.wait_until_converged();
-      const double converge_ms = ms_since(released);
-
-      const auto frame_name = [](int i) {
-        char name[32];
-        std::snprintf(name, sizeof name, "frame_%04d", i);
-        return std::string(name);
-      };
-      OutputBatch outputs;
-      write_frame(out, frame_name(0), *first.image);
-      if (args->frames > 1) write_frame(out, frame_name(args->frames - 1), *last.image);
-      write_frame(out, "converged", *converged.image);
-      nlohmann::json timing;
-      timing["backend"] = to_string(session.backend());
-      timing["width"] = session.view().width();
-      timing["height"] = session.view().height();
-      timing["frames"] = args->frames;
-      timing["median_frame_ms"] = percentile(frame_ms, 0.5);
-      timing["p95_frame_ms"] = percentile(frame_ms, 0.95);
-      timing["converge_ms"] = converge_ms;
-      timing["light"] = {{"name", start.name}, {"type", to_string(start.type)}, {"radius_m", radius}};
-      timing["lights"] = rig.lights.size();
-      write_text_atomically(out / "timing.json", timing.dump(2) + "\n");
-      outputs.commit();
-      std::printf("%d frames: median %.1f ms, p95 %.1f ms; converged %.0f ms after the last; written to %s\n",
-                  args->frames, double(timing["median_frame_ms"]), double(timing["p95_frame_ms"]), converge_ms,
-                  out.c_str());
-    };
-  });
+  run_when_parsed(*cmd, action, args, run_preview);
 }
 
 }  // namespace relight::cli

@@ -36,13 +36,30 @@ RegistrationResult register_and_report(Scene& scene, const RayScene& rays, const
   return r;
 }
 
+namespace {
+
+struct RegisterArgs {
+  std::string scene, out;
+  RegistrationOptions options;
+  bool fixed_position = false;
+};
+
+void run_register(const RegisterArgs& args, Progress& progress) {
+  AnalysisOptions load;
+  load.gbuffer_samples = 1;
+  LoadedScene s = load_for_rendering(args.scene, load, progress);
+  RegistrationOptions options = args.options;
+  options.refine_position = !args.fixed_position;
+  register_and_report(s.scene, *s.rays, options, progress);
+  const fs::path out = fs::absolute(args.out);
+  write_text_atomically(out, scene_to_json(s.scene, out.parent_path()));
+  std::printf("registered scene written to %s\n", args.out.c_str());
+}
+
+}  // namespace
+
 void add_register_command(CLI::App& app, Action& action) {
-  struct Args {
-    std::string scene, out;
-    RegistrationOptions options;
-    bool fixed_position = false;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<RegisterArgs>();
   CLI::App* cmd = app.add_subcommand("register", "refine the camera so that the geometry's edges meet the photo's");
   cmd->add_option("scene", args->scene, "scene.json")->required();
   cmd->add_option("-o,--out", args->out, "the registered scene.json to write (paths rewritten to still resolve)")
@@ -71,18 +88,7 @@ void add_register_command(CLI::App& app, Action& action) {
       {{"relight register scene.json -o scene_registered.json", "refine the camera of a hand-made camera match"},
        {"relight register scene.json --fixed-position -o scene_registered.json",
         "keep the camera where it is; only turn and zoom it"}}));
-  cmd->callback([&action, args] {
-    action = [args](Progress& progress) {
-      AnalysisOptions load;
-      load.gbuffer_samples = 1;
-      LoadedScene s = load_for_rendering(args->scene, load, progress);
-      args->options.refine_position = !args->fixed_position;
-      register_and_report(s.scene, *s.rays, args->options, progress);
-      const fs::path out = fs::absolute(args->out);
-      write_text_atomically(out, scene_to_json(s.scene, out.parent_path()));
-      std::printf("registered scene written to %s\n", args->out.c_str());
-    };
-  });
+  run_when_parsed(*cmd, action, args, run_register);
 }
 
 }  // namespace relight::cli

@@ -16,13 +16,40 @@ namespace relight::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+struct RenderArgs {
+  std::string scene, rig, out, analysis;
+  AnalysisOptions options;
+  float exposure = 0.0f;
+};
+
+void run_render(const RenderArgs& args, Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const Rig rig = load_rig(args.rig);
+  fs::path out(args.out);
+  if (out.extension() != ".exr") out += ".exr";
+  const AnalysedScene analysed(args.scene, args.analysis, args.options, progress);
+  const LoadedScene& s = analysed.loaded;
+  const Analysis& analysis = analysed.analysis;
+  RenderOptions render_options;
+  render_options.paths_per_pixel = args.options.paths_per_pixel;
+  render_options.max_bounces = args.options.max_bounces;
+  const Image image = render_rig(s.scene, *s.rays, *s.gbuffer, analysis, rig, render_options, progress);
+  fs::path png = out;
+  png.replace_extension(".png");
+  OutputBatch pair;  // the EXR and the PNG appear together
+  write_exr(out, image);
+  write_png(png, image, args.exposure);
+  pair.commit();
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("re-lit image written to %s and %s in %.1f s\n", out.c_str(), png.c_str(), secs);
+}
+
+}  // namespace
+
 void add_render_command(CLI::App& app, Action& action) {
-  struct Args {
-    std::string scene, rig, out, analysis;
-    AnalysisOptions options;
-    float exposure = 0.0f;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "render the photo under a new lighting design (rig.json)");
   cmd->add_option("scene", args->scene, "scene.json")->required();
   cmd->add_option("--rig", args->rig, "rig.json: the new lights")->required();
@@ -36,30 +63,9 @@ void add_render_command(CLI::App& app, Action& action) {
       "  tone-mapped PNG beside it. Without --analysis the scene is analysed first with the defaults.",
       {{"relight render scene.json --rig rigs/evening.json --analysis analysis -o evening.exr",
         "evening.exr and evening.png, reusing the analysis folder"},
-       {"relight render scene.json --rig rig.json -o relit.exr --exposure 1", "analyse, render, and a PNG one stop brighter"}}));
-  cmd->callback([&action, args] {
-    action = [args](Progress& progress) {
-      const auto start = std::chrono::steady_clock::now();
-      const Rig rig = load_rig(args->rig);
-      fs::path out(args->out);
-      if (out.extension() != ".exr") out += ".exr";
-      const AnalysedScene analysed(args->scene, args->analysis, args->options, progress);
-      const LoadedScene& s = analysed.loaded;
-      const Analysis& analysis = analysed.analysis;
-      RenderOptions render_options;
-      render_options.paths_per_pixel = args->options.paths_per_pixel;
-      render_options.max_bounces = args->options.max_bounces;
-      const Image image = render_rig(s.scene, *s.rays, *s.gbuffer, analysis, rig, render_options, progress);
-      fs::path png = out;
-      png.replace_extension(".png");
-      OutputBatch pair;  // the EXR and the PNG appear together
-      write_exr(out, image);
-      write_png(png, image, args->exposure);
-      pair.commit();
-      const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::printf("re-lit image written to %s and %s in %.1f s\n", out.c_str(), png.c_str(), secs);
-    };
-  });
+       {"relight render scene.json --rig rig.json -o relit.exr --exposure 1",
+        "analyse, render, and a PNG one stop brighter"}}));
+  run_when_parsed(*cmd, action, args, run_render);
 }
 
 }  // namespace relight::cli

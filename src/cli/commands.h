@@ -20,6 +20,12 @@ namespace relight::cli {
 // The action a parsed subcommand runs.
 using Action = std::function<void(Progress&)>;
 
+// Makes run(*args, progress) the action once `cmd` has been parsed into *args.
+template <class Args>
+void run_when_parsed(CLI::App& cmd, Action& action, std::shared_ptr<Args> args, void (*run)(const Args&, Progress&)) {
+  cmd.callback([&action, args, run] { action = [args, run](Progress& progress) { run(*args, progress); }; });
+}
+
 void add_analyze_command(CLI::App& app, Action& action);
 void add_render_command(CLI::App& app, Action& action);
 void add_rig_command(CLI::App& app, Action& action);

@@ -2,18 +2,13 @@
 
 namespace relight::gui {
 
-namespace {
-
-std::unique_ptr<RelightSession> start_session(const StudioScene& s, const Rig& rig, const SessionOptions& options) {
-  return std::make_unique<RelightSession>(s.scene, *s.rays, *s.gbuffer, s.analysis, rig, options);
-}
-
-}  // namespace
-
 LightingDocument::LightingDocument(std::shared_ptr<const StudioScene> scene, const Rig& rig,
                                    const SessionOptions& options, QObject* parent)
-    : QObject(parent), scene_(std::move(scene)), options_(options), rig_(rig),
-      session_(start_session(*scene_, rig_, options_)) {}
+    : QObject(parent),
+      scene_(std::move(scene)),
+      rig_(rig),
+      session_(std::make_unique<RelightSession>(scene_->scene, *scene_->rays, *scene_->gbuffer, scene_->analysis, rig_,
+                                                options)) {}
 
 LightingDocument::~LightingDocument() = default;
 
@@ -26,10 +21,7 @@ void LightingDocument::set_light(int index, const Light& light) {
 void LightingDocument::insert_light(int index, const Light& light) {
   const size_t at = size_t(index);
   rig_.lights.insert(rig_.lights.begin() + std::ptrdiff_t(at), light);
-  // The session only appends: the lights after `at` leave and come back
-  // behind the new one, so the session's order stays the rig's.
-  for (size_t i = rig_.lights.size() - 1; i > at; --i) session_->remove_light(at);
-  for (size_t i = at; i < rig_.lights.size(); ++i) session_->add_light(rig_.lights[i]);
+  session_->insert_light(at, light);
   emit lightInserted(index);
 }
 
@@ -46,9 +38,8 @@ void LightingDocument::set_environment_scale(float scale) {
 }
 
 void LightingDocument::reset_rig(const Rig& rig) {
-  session_.reset();
   rig_ = rig;
-  session_ = start_session(*scene_, rig_, options_);
+  session_->set_rig(rig_);
   emit rigReset();
 }
 

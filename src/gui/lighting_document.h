@@ -32,7 +32,8 @@ class LightingDocument : public QObject {
   void insert_light(int index, const Light& light);
   void remove_light(int index);
   void set_environment_scale(float scale);
-  // Replaces the whole rig (a rig file was opened): a new session.
+  // Replaces the whole rig (a rig file was opened); the session keeps the
+  // images of the lights that did not move.
   void reset_rig(const Rig& rig);
 
  signals:
@@ -44,7 +45,6 @@ class LightingDocument : public QObject {
 
  private:
   std::shared_ptr<const StudioScene> scene_;
-  SessionOptions options_;
   Rig rig_;
   std::unique_ptr<RelightSession> session_;
 };

@@ -1,24 +1,13 @@
 #include "gui/main_window.h"
 
 #include <QCloseEvent>
-#include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QFormLayout>
-#include <QGroupBox>
-#include <QHBoxLayout>
-#include <QLabel>
-#include <QListView>
 #include <QMenuBar>
 #include <QMessageBox>
-#include <QProgressBar>
-#include <QPushButton>
 #include <QSettings>
-#include <QSlider>
 #include <QSplitter>
 #include <QStatusBar>
-#include <QToolButton>
-#include <QVBoxLayout>
 #include <cmath>
 
 #include "core/error.h"
@@ -26,8 +15,10 @@
 #include "gui/light_commands.h"
 #include "gui/light_dialog.h"
 #include "gui/light_list_model.h"
+#include "gui/lights_panel.h"
+#include "gui/photo_panel.h"
 #include "gui/photo_view.h"
-#include "gui/tone_map.h"
+#include "gui/task_status.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
 
@@ -38,21 +29,6 @@ namespace {
 constexpr int kMaxRecent = 8;
 const QString kRecentScenes = QStringLiteral("recent_scenes");
 const QString kRecentRigs = QStringLiteral("recent_rigs");
-
-QString vec3_text(const Vec3& v, const QString& unit) {
-  return QStringLiteral("%1, %2, %3%4")
-      .arg(double(v.x()), 0, 'f', 3)
-      .arg(double(v.y()), 0, 'f', 3)
-      .arg(double(v.z()), 0, 'f', 3)
-      .arg(unit);
-}
-
-QLabel* detail_label(const QString& name) {
-  auto* label = new QLabel(QStringLiteral("\u2014"));
-  label->setObjectName(name);
-  label->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  return label;
-}
 
 // The view size for a photo: its own up to max_width, else scaled down.
 void choose_view_size(const Image& photo, int max_width, SessionOptions& options) {
@@ -69,29 +45,20 @@ StudioOptions default_studio_options() {
   return options;
 }
 
-MainWindow::MainWindow(StudioOptions options, QWidget* parent) : QMainWindow(parent), options_(options) {
+MainWindow::MainWindow(StudioOptions options, QWidget* parent)
+    : QMainWindow(parent), options_(options), lights_(new LightsPanel), photo_panel_(new PhotoPanel) {
+  connect_panels();
   auto* splitter = new QSplitter(Qt::Horizontal);
-  splitter->addWidget(make_left_panel());
-  splitter->addWidget(make_right_panel());
+  splitter->addWidget(lights_);
+  splitter->addWidget(photo_panel_);
   splitter->setStretchFactor(0, 0);
   splitter->setStretchFactor(1, 1);
   splitter->setSizes({430, 900});
   setCentralWidget(splitter);
   make_menus();
 
-  task_label_ = new QLabel;
-  task_progress_ = new QProgressBar;
-  task_progress_->setRange(0, 100);
-  task_progress_->setMaximumWidth(220);
-  task_cancel_ = new QToolButton;
-  task_cancel_->setText(tr("Cancel"));
-  for (QWidget* w : {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(task_progress_),
-                     static_cast<QWidget*>(task_cancel_)}) {
-    statusBar()->addPermanentWidget(w);
-    w->hide();
-  }
-  connect(task_cancel_, &QToolButton::clicked, &task_, &BackgroundTask::cancel);
-  connect(&task_, &BackgroundTask::progressed, task_progress_, &QProgressBar::setValue);
+  task_status_ = new TaskStatus(task_);
+  statusBar()->addPermanentWidget(task_status_);
 
   connect(&undo_, &QUndoStack::cleanChanged, this, [this] { update_title(); });
   connect(&frame_timer_, &QTimer::timeout, this, [this] { refresh_frame(); });
@@ -101,143 +68,41 @@ MainWindow::MainWindow(StudioOptions options, QWidget* parent) : QMainWindow(par
   resize(1500, 900);
 }
 
+GeometryView& MainWindow::geometry_view() const { return lights_->geometry_view(); }
+PhotoView& MainWindow::photo_view() const { return photo_panel_->photo_view(); }
+LightListModel& MainWindow::light_model() const { return lights_->model(); }
+
 MainWindow::~MainWindow() {
   frame_timer_.stop();
   task_.cancel();
   task_.wait();
   undo_.clear();
-  model_->set_document(nullptr);
-  geometry_->set_document(nullptr);
+  lights_->set_document(nullptr);
 }
 
-QWidget* MainWindow::make_left_panel() {
-  geometry_ = new GeometryView;
-  geometry_->setObjectName("geometry_view");
-  connect(geometry_, &GeometryView::lightClicked, this, &MainWindow::select_light);
-  connect(geometry_, &GeometryView::lightDragged, this,
+void MainWindow::connect_panels() {
+  GeometryView* geometry = &lights_->geometry_view();
+  connect(geometry, &GeometryView::lightClicked, this, &MainWindow::select_light);
+  connect(geometry, &GeometryView::lightDragged, this,
           [this](int index, const Light& light) { document_->set_light(index, light); });
-  connect(geometry_, &GeometryView::lightDropped, this, [this](int index, const Light& before, const Light& after) {
+  connect(geometry, &GeometryView::lightDropped, this, [this](int index, const Light& before, const Light& after) {
     undo_.push(new EditLightCommand(*document_, index, before, after, tr("Drag light")));
   });
-  connect(geometry_, &GeometryView::moveRequested, this, &MainWindow::move_selected_light);
-  connect(geometry_, &GeometryView::deleteRequested, this, [this] {
+  connect(geometry, &GeometryView::moveRequested, this, &MainWindow::move_selected_light);
+  connect(geometry, &GeometryView::deleteRequested, this, [this] {
     if (selected_ >= 0) delete_light(selected_);
   });
+  connect(&lights_->model(), &LightListModel::enabledToggleRequested, this, &MainWindow::set_light_enabled);
+  connect(lights_, &LightsPanel::lightSelected, this, &MainWindow::select_light);
+  connect(lights_, &LightsPanel::newRequested, this, &MainWindow::new_light_dialog);
+  connect(lights_, &LightsPanel::changeRequested, this, &MainWindow::change_light_dialog);
+  connect(lights_, &LightsPanel::deleteRequested, this, [this] { delete_light(selected_); });
 
-  model_ = new LightListModel(this);
-  connect(model_, &LightListModel::enabledToggleRequested, this, &MainWindow::set_light_enabled);
-  list_ = new QListView;
-  list_->setObjectName("light_list");
-  list_->setModel(model_);
-  list_->setIconSize(QSize(20, 20));
-  list_->setSpacing(2);
-  list_->setFocusPolicy(Qt::NoFocus);  // the keys move lights (geometry view), not the list's cursor
-  list_->setSelectionMode(QAbstractItemView::SingleSelection);
-  connect(list_->selectionModel(), &QItemSelectionModel::currentChanged, this,
-          [this](const QModelIndex& current) { select_light(current.isValid() ? current.row() : -1); });
-  connect(list_, &QListView::doubleClicked, this, [this] { change_light_dialog(); });
-
-  new_button_ = new QPushButton(tr("&New\u2026"));
-  change_button_ = new QPushButton(tr("&Change\u2026"));
-  delete_button_ = new QPushButton(tr("&Delete"));
-  new_button_->setToolTip(tr("Add a light (Insert)"));
-  change_button_->setToolTip(tr("Edit the selected light (Enter, or double-click it)"));
-  delete_button_->setToolTip(tr("Delete the selected light (Del)"));
-  connect(new_button_, &QPushButton::clicked, this, &MainWindow::new_light_dialog);
-  connect(change_button_, &QPushButton::clicked, this, &MainWindow::change_light_dialog);
-  connect(delete_button_, &QPushButton::clicked, this, [this] { delete_light(selected_); });
-  auto* buttons = new QHBoxLayout;
-  buttons->addWidget(new_button_);
-  buttons->addWidget(change_button_);
-  buttons->addWidget(delete_button_);
-
-  auto* lights = new QGroupBox(tr("Lights"));
-  auto* lights_layout = new QVBoxLayout(lights);
-  lights_layout->addWidget(list_, 1);
-  lights_layout->addLayout(buttons);
-
-  detail_type_ = detail_label("detail_type");
-  detail_colour_ = detail_label("detail_colour");
-  detail_position_ = detail_label("detail_position");
-  detail_direction_ = detail_label("detail_direction");
-  detail_power_ = detail_label("detail_power");
-  auto* details = new QGroupBox(tr("Selected light"));
-  auto* form = new QFormLayout(details);
-  form->setLabelAlignment(Qt::AlignRight);
-  form->addRow(tr("Type"), detail_type_);
-  form->addRow(tr("Colour"), detail_colour_);
-  form->addRow(tr("Position"), detail_position_);
-  form->addRow(tr("Direction"), detail_direction_);
-  form->addRow(tr("Power"), detail_power_);
-
-  auto* splitter = new QSplitter(Qt::Vertical);
-  splitter->addWidget(geometry_);
-  splitter->addWidget(lights);
-  splitter->addWidget(details);
-  splitter->setStretchFactor(0, 3);
-  splitter->setStretchFactor(1, 2);
-  splitter->setStretchFactor(2, 0);
-  splitter->setChildrenCollapsible(false);
-  auto* panel = new QWidget;
-  auto* layout = new QVBoxLayout(panel);
-  layout->setContentsMargins(6, 6, 2, 6);
-  layout->addWidget(splitter);
-  return panel;
-}
-
-QWidget* MainWindow::make_right_panel() {
-  photo_ = new PhotoView;
-  photo_->setObjectName("photo_view");
-  connect(photo_, &PhotoView::photoClicked, this, &MainWindow::place_selected_light);
-
-  split_ = new QSlider(Qt::Horizontal);
-  split_->setObjectName("split");
-  split_->setRange(0, 100);
-  split_->setToolTip(tr("Drag right to show the photo as taken left of a line, the re-lit photo right of it"));
-  connect(split_, &QSlider::valueChanged, this, [this](int value) { photo_->set_split(value / 100.0); });
-  exposure_ = new QDoubleSpinBox;
-  exposure_->setObjectName("exposure");
-  exposure_->setRange(-10.0, 10.0);
-  exposure_->setSingleStep(0.5);
-  exposure_->setDecimals(1);
-  exposure_->setSuffix(tr(" EV"));
-  exposure_->setToolTip(tr("Display exposure in stops (PNG export uses it too)"));
-  connect(exposure_, &QDoubleSpinBox::valueChanged, this, [this](double ev) { photo_->set_exposure(float(ev)); });
-  ambient_ = new QDoubleSpinBox;
-  ambient_->setObjectName("ambient");
-  ambient_->setRange(0.0, 20.0);
-  ambient_->setSingleStep(0.1);
-  ambient_->setDecimals(2);
-  ambient_->setPrefix(QStringLiteral("\u00d7 "));
-  ambient_->setToolTip(tr("Light from the environment (probes, background) and what is outside the geometry"));
-  connect(ambient_, &QDoubleSpinBox::valueChanged, this, [this](double scale) {
-    if (document_ && float(scale) != document_->rig().environment_scale)
-      undo_.push(new EnvironmentScaleCommand(*document_, document_->rig().environment_scale, float(scale)));
+  connect(&photo_panel_->photo_view(), &PhotoView::photoClicked, this, &MainWindow::place_selected_light);
+  connect(photo_panel_, &PhotoPanel::ambientEdited, this, [this](float scale) {
+    if (document_ && scale != document_->rig().environment_scale)
+      undo_.push(new EnvironmentScaleCommand(*document_, document_->rig().environment_scale, scale));
   });
-  quality_ = new QLabel;
-  quality_->setObjectName("quality");
-  quality_->setMinimumWidth(220);
-  quality_->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
-
-  auto* controls = new QHBoxLayout;
-  controls->setSpacing(10);
-  controls->addWidget(new QLabel(tr("Compare with photo")));
-  controls->addWidget(split_, 1);
-  controls->addSpacing(16);
-  controls->addWidget(new QLabel(tr("Exposure")));
-  controls->addWidget(exposure_);
-  controls->addSpacing(16);
-  controls->addWidget(new QLabel(tr("Ambient")));
-  controls->addWidget(ambient_);
-  controls->addSpacing(16);
-  controls->addWidget(quality_);
-
-  auto* panel = new QWidget;
-  auto* layout = new QVBoxLayout(panel);
-  layout->setContentsMargins(2, 6, 6, 6);
-  layout->addWidget(photo_, 1);
-  layout->addLayout(controls);
-  return panel;
 }
 
 void MainWindow::make_menus() {
@@ -299,26 +164,19 @@ void MainWindow::make_menus() {
   // Insert and Enter act where the lights are handled, not in the spin boxes.
   for (QAction* action : {new_light_action_, change_light_action_}) {
     action->setShortcutContext(Qt::WidgetShortcut);
-    geometry_->addAction(action);
+    lights_->geometry_view().addAction(action);
   }
 
   QMenu* view = menuBar()->addMenu(tr("&View"));
-  view->addAction(tr("&Reset Geometry View"), this, [this] { geometry_->reset_orbit(); });
+  view->addAction(tr("&Reset Geometry View"), this, [this] { lights_->geometry_view().reset_orbit(); });
 }
 
 void MainWindow::run_task(const QString& label, BackgroundTask::Work work,
                           std::function<void(const QString&)> done) {
-  task_label_->setText(label);
-  task_progress_->setValue(0);
-  for (QWidget* w : {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(task_progress_),
-                     static_cast<QWidget*>(task_cancel_)})
-    w->show();
+  task_status_->show_task(label);
   auto connection = std::make_shared<QMetaObject::Connection>();
   *connection = connect(&task_, &BackgroundTask::finished, this, [this, done, connection](const QString& error) {
     disconnect(*connection);
-    for (QWidget* w : {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(task_progress_),
-                       static_cast<QWidget*>(task_cancel_)})
-      w->hide();
     update_actions();
     done(error);
   });
@@ -360,37 +218,28 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   SessionOptions session = options_.session;
   choose_view_size(scene->scene.photo, options_.max_view_width, session);
   undo_.clear();
-  model_->set_document(nullptr);
-  geometry_->set_document(nullptr);
+  lights_->set_document(nullptr);
   document_.reset();
   scene_ = std::move(scene);
   document_ = std::make_unique<LightingDocument>(scene_, rig, session);
   scene_path_ = scene_path;
   rig_path_ = loaded_rig_path;
 
-  model_->set_document(document_.get());
-  geometry_->set_document(document_.get());
+  lights_->set_document(document_.get());
   connect(document_.get(), &LightingDocument::lightChanged, this, [this](int index) {
-    if (index == selected_) update_details();
+    if (index == selected_) lights_->show_details(index);
   });
   connect(document_.get(), &LightingDocument::lightInserted, this, &MainWindow::select_light);
   connect(document_.get(), &LightingDocument::lightRemoved, this,
           [this](int index) { select_light(std::min(index, document_->light_count() - 1)); });
   connect(document_.get(), &LightingDocument::rigReset, this, [this] {
     select_light(document_->light_count() > 0 ? 0 : -1);
-    const QSignalBlocker block(ambient_);
-    ambient_->setValue(double(document_->rig().environment_scale));
+    photo_panel_->show_ambient(document_->rig().environment_scale);
   });
-  connect(document_.get(), &LightingDocument::environmentScaleChanged, this, [this](float scale) {
-    const QSignalBlocker block(ambient_);
-    ambient_->setValue(double(scale));
-  });
-  {
-    const QSignalBlocker block(ambient_);
-    ambient_->setValue(double(rig.environment_scale));
-  }
-  photo_->set_photo(std::make_shared<const Image>(scene_->scene.photo));
-  photo_->set_relit(nullptr);
+  connect(document_.get(), &LightingDocument::environmentScaleChanged, photo_panel_, &PhotoPanel::show_ambient);
+  photo_panel_->show_ambient(rig.environment_scale);
+  photo_view().set_photo(std::make_shared<const Image>(scene_->scene.photo));
+  photo_view().set_relit(nullptr);
   select_light(document_->light_count() > 0 ? 0 : -1);
   remember(kRecentScenes, scene_path);
   if (!rig_path_.isEmpty()) remember(kRecentRigs, rig_path_);
@@ -401,7 +250,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
       8000);
   if (!document_->session().backend_note().empty())
     statusBar()->showMessage(QString::fromStdString(document_->session().backend_note()), 8000);
-  geometry_->setFocus();
+  geometry_view().setFocus();
   update_actions();
   update_title();
 }
@@ -449,7 +298,7 @@ void MainWindow::export_image(const QString& path) {
   const std::shared_ptr<const StudioScene> scene = scene_;
   const Rig rig = document_->rig();
   const RenderOptions render = options_.session.final_render;
-  const float exposure = photo_->exposure();
+  const float exposure = photo_view().exposure();
   const std::string target = path.toStdString();
   const bool png = suffix == "png";
   run_task(
@@ -531,48 +380,17 @@ void MainWindow::place_selected_light(const QPointF& image_position) {
 void MainWindow::select_light(int index) {
   if (!document_ || index >= document_->light_count()) index = -1;
   selected_ = index;
-  geometry_->set_selected(index);
-  const QModelIndex row = index >= 0 ? model_->index(index) : QModelIndex();
-  if (list_->currentIndex() != row) {
-    const QSignalBlocker block(list_->selectionModel());
-    list_->selectionModel()->setCurrentIndex(row, QItemSelectionModel::ClearAndSelect);
-    list_->viewport()->update();
-  }
-  update_details();
+  lights_->show_selection(index);
   update_actions();
 }
 
 bool MainWindow::refresh_frame() {
   if (!document_) return false;
   const Frame frame = document_->session().frame();
-  if (!frame.image || frame.image == photo_->relit()) return false;
-  photo_->set_relit(frame.image);
-  const char* backend = document_->session().backend() == Backend::gl ? "OpenGL" : "CPU";
-  switch (frame.quality) {
-    case FrameQuality::interactive: quality_->setText(tr("Preview (%1)").arg(backend)); break;
-    case FrameQuality::refining: quality_->setText(tr("Refining\u2026 (%1)").arg(backend)); break;
-    case FrameQuality::converged: quality_->setText(tr("Final quality (%1)").arg(backend)); break;
-  }
+  if (!frame.image || frame.image == photo_view().relit()) return false;
+  photo_view().set_relit(frame.image);
+  photo_panel_->show_quality(frame.quality, document_->session().backend());
   return true;
-}
-
-void MainWindow::update_details() {
-  const bool has = document_ && selected_ >= 0;
-  for (QLabel* label : {detail_type_, detail_colour_, detail_position_, detail_direction_, detail_power_})
-    label->setText(has ? QString() : QStringLiteral("\u2014"));
-  if (!has) return;
-  const Light& l = document_->light(selected_);
-  const bool sun = l.type == LightType::directional;
-  detail_type_->setText(sun ? tr("sun") : QString(to_string(l.type)));
-  detail_colour_->setText(QStringLiteral("<span style='color:%1'>\u25a0</span> %2 (%3, %4, %5)")
-                              .arg(display_colour(l.color).name(), colour_hex(l.color))
-                              .arg(double(l.color.x()), 0, 'g', 3)
-                              .arg(double(l.color.y()), 0, 'g', 3)
-                              .arg(double(l.color.z()), 0, 'g', 3));
-  detail_position_->setText(sun ? tr("\u2014 (infinitely far)") : vec3_text(l.position, tr(" m")));
-  detail_direction_->setText(l.type == LightType::point ? tr("\u2014 (all around)") : vec3_text(l.direction, {}));
-  detail_power_->setText(sun ? tr("%1 W/m\u00b2").arg(double(l.irradiance), 0, 'g', 4)
-                             : tr("%1 W").arg(double(l.power), 0, 'g', 4));
 }
 
 void MainWindow::update_actions() {
@@ -580,11 +398,9 @@ void MainWindow::update_actions() {
   const bool has = open && selected_ >= 0;
   for (QAction* a : {save_rig_action_, save_rig_as_action_, open_rig_action_, export_action_, new_light_action_})
     a->setEnabled(open);
-  new_button_->setEnabled(open);
   for (QAction* a : {change_light_action_, delete_light_action_}) a->setEnabled(has);
-  change_button_->setEnabled(has);
-  delete_button_->setEnabled(has);
-  ambient_->setEnabled(open);
+  lights_->enable_buttons(open, has);
+  photo_panel_->enable_ambient(open);
 }
 
 void MainWindow::update_title() {
@@ -650,7 +466,7 @@ void MainWindow::new_light_dialog() {
   dialog.setWindowTitle(tr("New light"));
   dialog.set_light(default_new_light());
   if (dialog.exec() == QDialog::Accepted) add_light(dialog.light());
-  geometry_->setFocus();
+  geometry_view().setFocus();
 }
 
 void MainWindow::change_light_dialog() {
@@ -659,7 +475,7 @@ void MainWindow::change_light_dialog() {
   dialog.setWindowTitle(tr("Change light"));
   dialog.set_light(document_->light(selected_));
   if (dialog.exec() == QDialog::Accepted) change_light(selected_, dialog.light());
-  geometry_->setFocus();
+  geometry_view().setFocus();
 }
 
 void MainWindow::remember(const QString& key, const QString& path) {

@@ -1,10 +1,10 @@
 // MainWindow (thesis 6.2): relight studio's main form. Left: the geometry
 // view, the list of lights (eye checkbox, short description) with New,
-// Change and Delete, and the selected light's details. Right: the re-lit
-// photo, live from the relighting session, with a before/after split, an
-// exposure and the ambient (environment) level. Files: scenes (analysed on
-// a worker with progress and cancel, cached next to the scene), rigs,
-// exported images; every edit is undoable.
+// Change and Delete, and the selected light's details (LightsPanel). Right:
+// the re-lit photo, live from the relighting session, with a before/after
+// split, an exposure and the ambient (environment) level (PhotoPanel).
+// Files: scenes (analysed on a worker with progress and cancel, cached next
+// to the scene), rigs, exported images; every edit is undoable.
 #pragma once
 
 #include <QMainWindow>
@@ -15,20 +15,16 @@
 #include "gui/background_task.h"
 #include "gui/lighting_document.h"
 
-class QDoubleSpinBox;
-class QLabel;
-class QListView;
 class QMenu;
-class QProgressBar;
-class QPushButton;
-class QSlider;
-class QToolButton;
 
 namespace relight::gui {
 
 class GeometryView;
 class LightListModel;
+class LightsPanel;
+class PhotoPanel;
 class PhotoView;
+class TaskStatus;
 
 struct StudioOptions {
   AnalysisOptions analysis;  // for a scene without a cached analysis
@@ -74,9 +70,9 @@ class MainWindow : public QMainWindow {
 
   LightingDocument* document() const { return document_.get(); }
   QUndoStack& undo_stack() { return undo_; }
-  GeometryView& geometry_view() const { return *geometry_; }
-  PhotoView& photo_view() const { return *photo_; }
-  LightListModel& light_model() const { return *model_; }
+  GeometryView& geometry_view() const;
+  PhotoView& photo_view() const;
+  LightListModel& light_model() const;
   QString rig_path() const { return rig_path_; }
   QString last_error() const { return last_error_; }
 
@@ -89,8 +85,7 @@ class MainWindow : public QMainWindow {
   void closeEvent(QCloseEvent* event) override;
 
  private:
-  QWidget* make_left_panel();
-  QWidget* make_right_panel();
+  void connect_panels();
   void make_menus();
   void install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path, const QString& rig_path);
   void run_task(const QString& label, BackgroundTask::Work work, std::function<void(const QString&)> done);
@@ -98,7 +93,6 @@ class MainWindow : public QMainWindow {
   bool maybe_keep_changes();  // false: the user cancelled
   void new_light_dialog();
   void change_light_dialog();
-  void update_details();
   void update_actions();
   void update_title();
   void remember(const QString& key, const QString& path);
@@ -114,19 +108,9 @@ class MainWindow : public QMainWindow {
   int selected_ = -1;
   QString scene_path_, rig_path_, last_error_;
 
-  GeometryView* geometry_;
-  PhotoView* photo_;
-  LightListModel* model_;
-  QListView* list_;
-  QPushButton *new_button_, *change_button_, *delete_button_;
-  QLabel *detail_type_, *detail_colour_, *detail_position_, *detail_direction_, *detail_power_;
-  QSlider* split_;
-  QDoubleSpinBox* exposure_;
-  QDoubleSpinBox* ambient_;
-  QLabel* quality_;
-  QLabel* task_label_;
-  QProgressBar* task_progress_;
-  QToolButton* task_cancel_;
+  LightsPanel* lights_;
+  PhotoPanel* photo_panel_;
+  TaskStatus* task_status_;
   QAction *save_rig_action_, *save_rig_as_action_, *open_rig_action_, *export_action_;
   QAction *new_light_action_, *change_light_action_, *delete_light_action_;
 };

@@ -386,6 +386,12 @@ void write_text_atomically(const fs::path& target, const std::string& text) {
 void set_force_outputs(bool force) { g_force.store(force); }
 bool force_outputs() { return g_force.load(); }
 
+void create_output_folder(const fs::path& folder) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (!fs::is_directory(folder, ec)) throw InputError(folder.string(), "", "cannot create the output folder");
+}
+
 // ------------------------------------------------------------ folder lock
 
 FolderLock::FolderLock(const fs::path& folder, Mode mode) {

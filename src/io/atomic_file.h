@@ -34,6 +34,10 @@ void write_text_atomically(const std::filesystem::path& target, const std::strin
 void set_force_outputs(bool force);
 bool force_outputs();
 
+// Creates output folder `folder` (and its parents) where it is not there;
+// InputError naming it where it cannot be made a folder.
+void create_output_folder(const std::filesystem::path& folder);
+
 // Outputs that belong together (render's EXR and PNG, an analysis folder):
 // while a batch lives, every write_atomically on this thread writes its
 // temporary and leaves the target alone; commit() renames them all onto their

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "core/error.h"
 #include "io/input_file.h"
@@ -89,12 +87,7 @@ CameraSpec camera_from_parameters(const JsonReader& r, const json& p, const std:
 
 FspyCamera read_fspy_camera(const fs::path& path) {
   const std::string name = path.string();
-  expect_input_file(path, "an fSpy project (.fspy) or the JSON fSpy exports");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(name, "", "cannot be opened for reading");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string bytes = buffer.str();
+  const std::string bytes = read_input_bytes(path, "an fSpy project (.fspy) or the JSON fSpy exports");
 
   const bool project = bytes.size() >= 4 && std::memcmp(bytes.data(), kMagic, 4) == 0;
   auto [parameters, ptr] = project ? project_camera_parameters(name, bytes)

@@ -7,10 +7,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <numbers>
 #include <optional>
-#include <sstream>
 
 #include "core/error.h"
 #include "io/input_file.h"
@@ -43,12 +41,7 @@ uint32_t little_endian_u32(const std::string& bytes, size_t offset) {
 json read_gltf_json(const fs::path& path) {
   const std::string name = path.string();
   if (lower_extension(path) == ".gltf") return JsonReader::parse_file(path);
-  expect_input_file(path, "a glTF binary file (.glb)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(name, "", "cannot be opened for reading");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string bytes = buffer.str();
+  const std::string bytes = read_input_bytes(path, "a glTF binary file (.glb)");
   if (bytes.size() < 20 || std::memcmp(bytes.data(), "glTF", 4) != 0)
     throw InputError(name, "", "not a binary glTF file (no \"glTF\" header)");
   if (little_endian_u32(bytes, 4) != 2) throw InputError(name, "", "glTF version " + std::to_string(little_endian_u32(bytes, 4)) + " is not supported (expected 2)");

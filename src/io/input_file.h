@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 namespace relight {
 
@@ -11,5 +12,9 @@ namespace relight {
 // names what it should be ("an image file"). Notes the file as an input of
 // the command (io/output_guard.h), so that no output replaces it.
 void expect_input_file(const std::filesystem::path& path, const char* expected);
+
+// The whole of input file `path`, after expect_input_file's checks;
+// InputError where it cannot be opened.
+std::string read_input_bytes(const std::filesystem::path& path, const char* expected);
 
 }  // namespace relight

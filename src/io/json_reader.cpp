@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "core/error.h"
 #include "core/image.h"
@@ -16,13 +14,7 @@ namespace relight {
 namespace fs = std::filesystem;
 
 JsonReader::json JsonReader::parse_file(const fs::path& path) {
-  const std::string name = path.string();
-  expect_input_file(path, "a JSON file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(name, "", "cannot be opened for reading");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_text(name, buffer.str());
+  return parse_text(path.string(), read_input_bytes(path, "a JSON file"));
 }
 
 JsonReader::json JsonReader::parse_text(const std::string& name, const std::string& text) {

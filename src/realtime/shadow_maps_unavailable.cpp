@@ -5,8 +5,8 @@ namespace relight {
 
 struct GlRelighter::State {};
 
-std::unique_ptr<GlRelighter> GlRelighter::open(const TriangleMesh&, const PixelSurfaces&, const Image&,
-                                               const ShadowMapOptions&, std::string& why) {
+std::unique_ptr<GlRelighter> GlRelighter::open(const TriangleMesh&, const PixelSurfaces&, const ShadowMapOptions&,
+                                               std::string& why) {
   why = "relight was built without libepoxy";
   return nullptr;
 }
@@ -18,6 +18,5 @@ const std::string& GlRelighter::renderer() const {
   return none;
 }
 void GlRelighter::render(const Light&, Image&) {}
-Image GlRelighter::relight(const std::vector<Light>&) { return {}; }
 
 }  // namespace relight

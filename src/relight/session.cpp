@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <limits>
 #include <optional>
@@ -16,9 +17,12 @@ const char* to_string(Backend backend) { return backend == Backend::gl ? "gl" : 
 
 const char* to_string(FrameQuality quality) {
   switch (quality) {
-    case FrameQuality::interactive: return "interactive";
-    case FrameQuality::refining: return "refining";
-    case FrameQuality::converged: return "converged";
+    case FrameQuality::interactive:
+      return "interactive";
+    case FrameQuality::refining:
+      return "refining";
+    case FrameQuality::converged:
+      return "converged";
   }
   return "?";
 }
@@ -36,6 +40,12 @@ bool same_geometry(const Light& a, const Light& b) {
          a.angle_deg == b.angle_deg;
 }
 
+// Whether setting `b` over `a` changes the picture (the name does not).
+bool same_picture(const Light& a, const Light& b) {
+  return same_geometry(a, b) && a.color == b.color && a.enabled == b.enabled && a.power == b.power &&
+         a.irradiance == b.irradiance;
+}
+
 bool has_extent(const Light& light) { return LightSampler(light).needs_random(); }
 
 constexpr uint64_t kNothing = std::numeric_limits<uint64_t>::max();  // no image rendered yet
@@ -49,7 +59,7 @@ struct RelightSession::LightCache {
   Image direct;                  // unit emission; empty until rendered
   uint64_t direct_geometry = 0;  // the geometry `direct` was rendered for
   Stage stage = Stage::none;
-  Image bounce;                  // its interreflection, unit emission; empty: none yet
+  Image bounce;  // its interreflection, unit emission; empty: none yet
   uint64_t bounce_geometry = 0;
 
   bool pending() const { return light.enabled && direct_geometry != geometry; }
@@ -61,7 +71,7 @@ struct RelightSession::Job {
   uint64_t geometry = 0;  // of the light, when the job was made
   uint64_t edit = 0;      // the session's, when the job was made
   Light light;
-  Rig rig;                // final
+  Rig rig;  // final
   Image result;
   std::atomic<bool> cancel{false};
   Progress progress{false};  // render_illumination's cancel flag
@@ -80,12 +90,12 @@ struct RelightSession::Composition {
     std::shared_ptr<LightCache> light;
     Vec3 emission;
   };
-  std::vector<Term> others;          // enabled lights but the focus
-  std::optional<Term> focus;         // the focus light, if enabled
+  std::vector<Term> others;   // enabled lights but the focus
+  std::optional<Term> focus;  // the focus light, if enabled
   float scale = 1.0f;
   bool rebuild_base = false;
   std::shared_ptr<const Image> final;
-  uint64_t edit = 0;                 // every edit up to this one is shown
+  uint64_t edit = 0;  // every edit up to this one is shown
   FrameQuality quality = FrameQuality::interactive;
 };
 
@@ -100,8 +110,7 @@ RelightSession::RelightSession(const Scene& scene, const RayScene& rays, const G
                                           options.width, options.height)) {
   if (options_.backend == Backend::gl) {
     std::string why;
-    fast_ = GlRelighter::open(scene.mesh, view_->surfaces(), view_->layers().albedo_coverage, options_.shadow_maps,
-                              why);
+    fast_ = GlRelighter::open(scene.mesh, view_->surfaces(), options_.shadow_maps, why);
     if (fast_) {
       backend_ = Backend::gl;
     } else {
@@ -113,12 +122,8 @@ RelightSession::RelightSession(const Scene& scene, const RayScene& rays, const G
 
   environment_scale_ = rig.environment_scale;
   for (const Light& light : rig.lights) {
-    auto cache = std::make_shared<LightCache>();
-    cache->id = next_light_id_++;
-    cache->light = light;
-    cache->geometry = edit_;  // the rig is edit 1
-    cache->direct_geometry = kNothing;
-    lights_.push_back(std::move(cache));
+    lights_.push_back(new_light_locked(light));
+    lights_.back()->geometry = edit_;  // the rig is edit 1
   }
   last_edit_time_ = std::chrono::steady_clock::now();  // the starting rig counts as an edit
   worker_ = std::thread([this] { run_worker(); });
@@ -154,13 +159,29 @@ uint64_t RelightSession::edited_locked(uint64_t light_id, bool geometry) {
   return edit;
 }
 
-uint64_t RelightSession::add_light(const Light& light) {
-  std::lock_guard lock(mutex_);
+std::shared_ptr<RelightSession::LightCache> RelightSession::new_light_locked(const Light& light) {
   auto cache = std::make_shared<LightCache>();
   cache->id = next_light_id_++;
   cache->light = light;
   cache->direct_geometry = kNothing;
-  lights_.push_back(cache);
+  return cache;
+}
+
+uint64_t RelightSession::add_light(const Light& light) {
+  std::lock_guard lock(mutex_);
+  return insert_light_locked(lights_.size(), light);
+}
+
+uint64_t RelightSession::insert_light(size_t index, const Light& light) {
+  std::lock_guard lock(mutex_);
+  if (index > lights_.size())
+    throw std::out_of_range("RelightSession::insert_light: no place " + std::to_string(index));
+  return insert_light_locked(index, light);
+}
+
+uint64_t RelightSession::insert_light_locked(size_t index, const Light& light) {
+  const std::shared_ptr<LightCache> cache = new_light_locked(light);
+  lights_.insert(lights_.begin() + std::ptrdiff_t(index), cache);
   const uint64_t edit = edited_locked(cache->id, true);
   cache->geometry = edit;
   return edit;
@@ -170,6 +191,12 @@ uint64_t RelightSession::set_light(size_t index, const Light& light) {
   std::lock_guard lock(mutex_);
   if (index >= lights_.size()) throw std::out_of_range("RelightSession::set_light: no light " + std::to_string(index));
   LightCache& cache = *lights_[index];
+  // The drop at the end of a drag sets the light the drag left: that must
+  // not cancel the refinement the drag's last move started.
+  if (same_picture(cache.light, light)) {
+    cache.light.name = light.name;
+    return edit_;
+  }
   const bool geometry = !same_geometry(cache.light, light);
   cache.light = light;
   const uint64_t edit = edited_locked(cache.id, geometry);
@@ -186,6 +213,35 @@ uint64_t RelightSession::remove_light(size_t index) {
   if (focus_ == id) focus_ = 0;
   if (running_ && running_->light_id == id) running_->request_cancel();
   return edited_locked(id, false);
+}
+
+uint64_t RelightSession::set_rig(const Rig& rig) {
+  std::lock_guard lock(mutex_);
+  std::vector<std::shared_ptr<LightCache>> old = std::move(lights_);
+  lights_.clear();
+  std::vector<std::shared_ptr<LightCache>> added;
+  for (const Light& light : rig.lights) {
+    const auto kept = std::find_if(old.begin(), old.end(),
+                                   [&](const auto& cache) { return cache && same_geometry(cache->light, light); });
+    if (kept != old.end()) {
+      lights_.push_back(std::move(*kept));  // leaves a null in `old`: used
+      lights_.back()->light = light;
+    } else {
+      added.push_back(new_light_locked(light));
+      lights_.push_back(added.back());
+    }
+  }
+  for (const auto& cache : old) {
+    if (!cache) continue;
+    if (focus_ == cache->id) focus_ = 0;
+    if (running_ && running_->light_id == cache->id) running_->request_cancel();
+  }
+  environment_scale_ = rig.environment_scale;
+  const uint64_t edit = edited_locked(0, false);
+  for (const auto& cache : added) cache->geometry = edit;
+  // New lights are rendered before anything refines further.
+  if (!added.empty() && running_ && running_->is_refinement()) running_->request_cancel();
+  return edit;
 }
 
 uint64_t RelightSession::set_environment_scale(float scale) {
@@ -309,8 +365,9 @@ void RelightSession::run_job(Job& job) {
       case Kind::environment: {
         Lighting lighting;
         lighting.environment = illumination_.environment();
-        job.result = illumination_.render(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress,
-                                          "environment").surface;
+        job.result =
+            illumination_.render(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress, "environment")
+                .surface;
         job.done = true;
         break;
       }
@@ -320,16 +377,18 @@ void RelightSession::run_job(Job& job) {
         } else {
           Lighting lighting;
           lighting.lights = {job.light};
-          job.result = illumination_.render(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress,
-                                            "interreflection", false).surface;
+          job.result = illumination_
+                           .render(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress,
+                                   "interreflection", false)
+                           .surface;
         }
         job.done = true;
         break;
       }
       case Kind::final: {
-        const IlluminationImages light = illumination_.render(
-            view.gbuffer(), view.camera(), illumination_.rig_lighting(job.rig), options_.final_render, job.progress,
-            "new illumination");
+        const IlluminationImages light =
+            illumination_.render(view.gbuffer(), view.camera(), illumination_.rig_lighting(job.rig),
+                                 options_.final_render, job.progress, "new illumination");
         job.result = compose_relit(view.layers(), light.surface, job.rig.environment_scale);
         job.done = true;
         break;
@@ -384,7 +443,8 @@ void RelightSession::install_locked(Job& job) {
       cache->bounce_geometry = job.geometry;
       base_valid_ = false;  // the base holds every light's interreflection
       break;
-    default: break;
+    default:
+      break;
   }
   if (cache->id != focus_) base_valid_ = false;
   dirty_ = true;
@@ -441,16 +501,18 @@ void RelightSession::compose_and_publish(std::unique_lock<std::mutex>& lock) {
           for (const auto& t : c.others)
             light += t.emission.cwiseProduct(term(t.light->direct, i) + term(t.light->bounce, i));
           if (c.focus) light += c.focus->emission.cwiseProduct(term(c.focus->light->bounce, i));
-          base_.pixels[i] = layers.albedo_coverage.pixels[i].cwiseProduct(light) + c.scale * layers.background.pixels[i];
+          base_.pixels[i] =
+              layers.albedo_coverage.pixels[i].cwiseProduct(light) + c.scale * layers.background.pixels[i];
         }
       });
     }
     const Image* focus_direct = c.focus && !c.focus->light->direct.empty() ? &c.focus->light->direct : nullptr;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, base_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i)
-        out->pixels[i] = focus_direct ? Vec3(base_.pixels[i] + layers.albedo_coverage.pixels[i].cwiseProduct(
-                                                                   c.focus->emission.cwiseProduct(focus_direct->pixels[i])))
-                                      : base_.pixels[i];
+        out->pixels[i] = focus_direct
+                             ? Vec3(base_.pixels[i] + layers.albedo_coverage.pixels[i].cwiseProduct(
+                                                          c.focus->emission.cwiseProduct(focus_direct->pixels[i])))
+                             : base_.pixels[i];
     });
   }
 

@@ -32,12 +32,12 @@ const char* to_string(Backend backend);
 
 struct SessionOptions {
   Backend backend = Backend::cpu;
-  int width = 0, height = 0;     // the view; 0: the photo's size (then it converges to render_rig's image)
-  int soft_light_samples = 64;   // per pixel, refining the direct light of lights with an extent
-  int bounce_paths = 16;         // per pixel, each light's interreflection and the environment before the final render
-  RenderOptions final_render;    // the last refinement: `relight render`'s render (its --spp and --bounces)
+  int width = 0, height = 0;    // the view; 0: the photo's size (then it converges to render_rig's image)
+  int soft_light_samples = 64;  // per pixel, refining the direct light of lights with an extent
+  int bounce_paths = 16;        // per pixel, each light's interreflection and the environment before the final render
+  RenderOptions final_render;   // the last refinement: `relight render`'s render (its --spp and --bounces)
   std::chrono::milliseconds settle{150};  // refinement starts once no edit came for this long
-  ShadowMapOptions shadow_maps;  // the OpenGL backend's
+  ShadowMapOptions shadow_maps;           // the OpenGL backend's
 };
 
 // How far a frame has got.
@@ -79,9 +79,16 @@ class RelightSession {
 
   // Edits return at once with the edit's number; the worker renders them.
   uint64_t add_light(const Light& light);
+  // Inserts before light `index` (0..light count); no other light is rendered again.
+  uint64_t insert_light(size_t index, const Light& light);
   // Moves, re-shapes, recolours, re-powers, enables or disables light `index`.
+  // The light as it already is makes no edit (returns the last edit).
   uint64_t set_light(size_t index, const Light& light);
   uint64_t remove_light(size_t index);
+  // Replaces the rig (a rig file was opened). A light of the old rig with the
+  // same geometry as one of the new keeps its images (the first unused such
+  // light, in order): only lights that are new or moved are rendered again.
+  uint64_t set_rig(const Rig& rig);
   uint64_t set_environment_scale(float scale);
   Rig rig() const;
   uint64_t last_edit() const;
@@ -105,6 +112,8 @@ class RelightSession {
   Composition composition_locked();
   void compose_and_publish(std::unique_lock<std::mutex>& lock);
   std::shared_ptr<LightCache> find_light_locked(uint64_t id) const;
+  std::shared_ptr<LightCache> new_light_locked(const Light& light);
+  uint64_t insert_light_locked(size_t index, const Light& light);
   uint64_t edited_locked(uint64_t light_id, bool geometry);
 
   const Scene& scene_;
@@ -122,19 +131,19 @@ class RelightSession {
   float environment_scale_ = 1.0f;
   std::vector<std::shared_ptr<LightCache>> lights_;
   uint64_t next_light_id_ = 1;
-  uint64_t focus_ = 0;                  // the light moved last: kept out of base_, so moving it costs one pass
-  Image base_;                          // the frame without the focus light's direct light
+  uint64_t focus_ = 0;  // the light moved last: kept out of base_, so moving it costs one pass
+  Image base_;          // the frame without the focus light's direct light
   bool base_valid_ = false;
   std::vector<std::shared_ptr<Image>> frame_buffers_;
-  Image spare_;                         // a light's last interactive image, to render the next one into
-  uint64_t edit_ = 1;                   // edit 1: the rig the session started with
+  Image spare_;        // a light's last interactive image, to render the next one into
+  uint64_t edit_ = 1;  // edit 1: the rig the session started with
   std::chrono::steady_clock::time_point last_edit_time_;
   Image environment_;                   // environment + its interreflection at scale 1; empty until rendered
   std::shared_ptr<const Image> final_;  // the final render of the current state, if done
   Frame frame_;
   SessionStats stats_;
-  bool dirty_ = true;                   // the frame must be composed again
-  Job* running_ = nullptr;              // the job on the worker, if any
+  bool dirty_ = true;       // the frame must be composed again
+  Job* running_ = nullptr;  // the job on the worker, if any
   bool stop_ = false;
   std::thread worker_;
 };

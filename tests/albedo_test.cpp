@@ -1,0 +1,111 @@
+// recover_albedo on a synthetic photo made by its own model: a pixel that
+// covers a surface by a fraction c shows c a L + (1 - c) B (albedo a,
+// illumination L, background B). Where c and L are large enough the albedo
+// comes back exactly; elsewhere it is filled from the same surface.
+#include "analysis/albedo.h"
+
+#include <gtest/gtest.h>
+
+#include "flat_walls.h"
+
+using namespace relight;
+
+namespace {
+
+constexpr int kW = 48, kH = 36;
+
+// Smooth, known fields over the image.
+Vec3 true_albedo(int x, int y) { return Vec3(0.2f + 0.6f * float(x) / kW, 0.5f, 0.7f - 0.4f * float(y) / kH); }
+Vec3 light_at(int x, int y) { return Vec3(1.0f + 0.5f * float(x) / kW, 0.8f, 0.6f + float(y) / kH); }
+const Vec3 kBackground(0.3f, 0.4f, 0.5f);
+
+struct Synthetic {
+  TriangleMesh mesh;  // before rays, which refer to it
+  RayScene rays;
+  GBuffer gbuffer;
+  IlluminationImages illumination;
+  Image photo;
+
+  // One wall whose left edge, x = -0.2 m at 2 m, runs down the image: the
+  // pixels on the edge see it in part; those left of it see the background.
+  Synthetic()
+      : mesh(test::walls_mesh({{2.0f, -0.2f, 10.0f}})),
+        rays(mesh),
+        gbuffer(test::walls_camera(kW, kH), rays, 16, 1, "walls"),
+        illumination{Image(kW, kH), Image(kW, kH)},
+        photo(kW, kH) {
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        illumination.surface.at(x, y) = light_at(x, y);
+        illumination.background.at(x, y) = kBackground;
+      }
+  }
+  void make_photo() {
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const float c = gbuffer.coverage(x, y);
+        photo.at(x, y) = c * true_albedo(x, y).cwiseProduct(illumination.surface.at(x, y)) + (1 - c) * kBackground;
+      }
+  }
+};
+
+float max_error(const Vec3& a, const Vec3& b) { return (a - b).cwiseAbs().maxCoeff(); }
+
+TEST(RecoverAlbedo, UndoesTheMixOfSurfaceAndBackground) {
+  Synthetic s;
+  s.make_photo();
+  const AlbedoImages a = recover_albedo(s.photo, s.illumination, s.gbuffer);
+  int exact = 0, partial = 0, background = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const float c = s.gbuffer.coverage(x, y);
+      if (c == 0.0f) {
+        ++background;
+        EXPECT_EQ(a.albedo_coverage.at(x, y), Vec3::Zero());
+        continue;
+      }
+      EXPECT_LT(max_error(a.albedo_coverage.at(x, y), c * a.albedo.at(x, y)), 1e-6f);
+      if (c >= 0.5f) {
+        ++exact;
+        if (c < 1.0f) ++partial;
+        EXPECT_LT(max_error(a.albedo.at(x, y), true_albedo(x, y)), 1e-5f) << x << "," << y << " coverage " << c;
+      } else {
+        // Too little of the surface to divide by: its neighbour's albedo, a
+        // pixel or so away on a smooth field.
+        EXPECT_LT(max_error(a.albedo.at(x, y), true_albedo(x, y)), 0.03f) << x << "," << y;
+      }
+    }
+  EXPECT_GT(background, 0);
+  EXPECT_GT(partial, 0);  // the edge is there and divided exactly
+  EXPECT_EQ(a.filled, size_t(kW * kH - background - exact));
+}
+
+TEST(RecoverAlbedo, FillsDeepShadowFromTheSameSurfaceNotByDividing) {
+  Synthetic s;
+  // A block in deep shadow: under 1 % of the median illumination.
+  for (int y = 10; y < 20; ++y)
+    for (int x = 25; x < 35; ++x) s.illumination.surface.at(x, y) = Vec3::Constant(1e-4f);
+  s.make_photo();
+  // Noise in the photo there would blow up by 10^4 if divided.
+  for (int y = 10; y < 20; ++y)
+    for (int x = 25; x < 35; ++x) s.photo.at(x, y) += Vec3::Constant(0.01f);
+  const AlbedoImages a = recover_albedo(s.photo, s.illumination, s.gbuffer);
+  EXPECT_GE(a.filled, size_t(100));
+  for (int y = 10; y < 20; ++y)
+    for (int x = 25; x < 35; ++x)
+      // Grown in from the block's rim, at most 5 pixels away on a gentle slope.
+      EXPECT_LT(max_error(a.albedo.at(x, y), true_albedo(x, y)), 0.08f) << x << "," << y;
+  // The mean is that of the pixels that could be divided.
+  EXPECT_NEAR(a.mean.y(), 0.5f, 1e-4f);
+}
+
+TEST(RecoverAlbedo, ClampsWhatNoAlbedoCouldReflect) {
+  Synthetic s;
+  s.make_photo();
+  s.photo.at(40, 18) *= 1000.0f;  // a highlight far brighter than the light allows
+  const AlbedoImages a = recover_albedo(s.photo, s.illumination, s.gbuffer);
+  EXPECT_LE(a.albedo.at(40, 18).maxCoeff(), 10.0f);
+  EXPECT_GT(a.albedo.at(40, 18).minCoeff(), 9.0f);
+}
+
+}  // namespace
