@@ -48,7 +48,8 @@ int child_main(const std::string& mode, const fs::path& target) {
     });
   } else {
     Image big(4000, 3000);  // 144 MB of floats, with detail for the compressor to chew on
-    for (size_t i = 0; i < big.size(); ++i) big.pixels[i] = Vec3(float(i % 977), float(i % 1009), float(i % 13)) * 1e-3f;
+    for (size_t i = 0; i < big.size(); ++i)
+      big.pixels[i] = Vec3(float(i % 977), float(i % 1009), float(i % 13)) * 1e-3f;
     relight::write_exr(target, big);
   }
   return 0;
@@ -129,8 +130,9 @@ TEST(AnalysisCache, RenderRefusesAnAnalysisOfChangedInputs) {
   f.write_json();
   const std::string scene = (f / "scene.json").string(), analysis = (f / "analysis").string();
   ASSERT_EQ(run_cli({"analyze", scene, "-o", analysis, "--spp", "1"}).status, 0);
-  const std::vector<std::string> render = {"render", scene, "--rig", (f / "rig.json").string(), "--analysis",
-                                           analysis, "-o", (f / "relit.exr").string(), "--spp", "1"};
+  const std::vector<std::string> render = {"render",     scene,    "--rig", (f / "rig.json").string(),
+                                           "--analysis", analysis, "-o",    (f / "relit.exr").string(),
+                                           "--spp",      "1"};
   const auto edit_json = [](const fs::path& path, const std::function<void(relight::test::json&)>& edit) {
     auto j = relight::test::json::parse(read_text(path));
     edit(j);
@@ -138,9 +140,12 @@ TEST(AnalysisCache, RenderRefusesAnAnalysisOfChangedInputs) {
   };
   const std::vector<Change> changes = {
       {"photo", "photo.exr", [](SceneFolder& f) { f.replace_photo(Image(8, 6, Vec3(0.3f, 0.25f, 0.21f))); }},
-      {"geometry", "geometry.obj", [](SceneFolder& f) { write_text(f / "geometry.obj", read_text(f / "geometry.obj") + "v 0 0 9\n"); }},
-      {"probe", "probe.exr", [](SceneFolder& f) { relight::write_exr(f / "probe.exr", Image(8, 4, Vec3(0.5f, 0.5f, 0.6f))); }},
-      {"scene.json", "scene.json", [&](SceneFolder& f) { edit_json(f / "scene.json", [](auto& j) { j["lights"][0]["power"] = 201; }); }},
+      {"geometry", "geometry.obj",
+       [](SceneFolder& f) { write_text(f / "geometry.obj", read_text(f / "geometry.obj") + "v 0 0 9\n"); }},
+      {"probe", "probe.exr",
+       [](SceneFolder& f) { relight::write_exr(f / "probe.exr", Image(8, 4, Vec3(0.5f, 0.5f, 0.6f))); }},
+      {"scene.json", "scene.json",
+       [&](SceneFolder& f) { edit_json(f / "scene.json", [](auto& j) { j["lights"][0]["power"] = 201; }); }},
       {"analysis options", "analysis/analysis.json",
        [&](SceneFolder& f) { edit_json(f / "analysis" / "analysis.json", [](auto& j) { j["seed"] = 2; }); }},
       {"no hash", "analysis/analysis.json",
@@ -152,12 +157,50 @@ TEST(AnalysisCache, RenderRefusesAnAnalysisOfChangedInputs) {
     change.apply(f);
     const auto [status, err] = run_cli(render);
     EXPECT_EQ(status, 2) << change.name << ": " << err;
-    EXPECT_NE(err.find("analysis.json: /input_hash: the analysis is stale"), std::string::npos) << change.name << ": " << err;
+    EXPECT_NE(err.find("analysis.json: /input_hash: the analysis is stale"), std::string::npos)
+        << change.name << ": " << err;
     EXPECT_NE(err.find("re-run 'relight analyze'"), std::string::npos) << change.name << ": " << err;
     // The hash is of the contents: the same bytes again make the analysis valid again.
     write_text(f / change.file, original);
     EXPECT_EQ(run_cli(render).status, 0) << change.name << " restored";
   }
+}
+
+// analysis.json edited by hand or damaged: each wrong value is named by its
+// key, and nothing is rendered.
+TEST(AnalysisCache, RenderNamesTheKeyOfABadAnalysisFile) {
+  SceneFolder f("analysis_bad_key");
+  f.write_json();
+  const std::string scene = (f / "scene.json").string();
+  const fs::path analysis = f / "analysis", meta = analysis / "analysis.json";
+  ASSERT_EQ(run_cli({"analyze", scene, "-o", analysis.string(), "--spp", "1"}).status, 0);
+  const std::vector<std::string> render = {"render",     scene,
+                                           "--rig",      (f / "rig.json").string(),
+                                           "--analysis", analysis.string(),
+                                           "-o",         (f / "relit.exr").string(),
+                                           "--spp",      "1"};
+  const std::string original = read_text(meta);
+  const struct {
+    const char* key;
+    relight::test::json value;
+    const char* message;
+  } bad[] = {{"paths_per_pixel", "many", "analysis.json: /paths_per_pixel: expected a whole number"},
+             {"seed", -1, "analysis.json: /seed: expected a whole number"},
+             {"bounce_source", "mirror", "analysis.json: /bounce_source: unknown value 'mirror'"},
+             {"unseen_albedo", 0.5, "analysis.json: /unseen_albedo"},
+             {"unseen_triangles", relight::test::json::array({{1e9, 0.5, 0.5, 0.5}}),
+              "analysis.json: /unseen_triangles/0: names a triangle the geometry does not have"}};
+  for (const auto& b : bad) {
+    auto j = relight::test::json::parse(original);
+    j[b.key] = b.value;
+    write_text(meta, j.dump(2));
+    const auto [status, err] = run_cli(render);
+    EXPECT_EQ(status, 2) << b.key << ": " << err;
+    EXPECT_NE(err.find(b.message), std::string::npos) << b.key << ": " << err;
+    EXPECT_FALSE(fs::exists(f / "relit.exr")) << b.key;
+  }
+  write_text(meta, original);
+  EXPECT_EQ(run_cli(render).status, 0) << "the original analysis.json restored";
 }
 
 // An analyze killed while rewriting its folder leaves some images new and
@@ -169,15 +212,19 @@ TEST(AnalysisCache, RenderRefusesImagesOtherThanThoseItDescribes) {
   const std::string scene = (f / "scene.json").string();
   const fs::path analysis = f / "analysis";
   ASSERT_EQ(run_cli({"analyze", scene, "-o", analysis.string(), "--spp", "1"}).status, 0);
-  const std::vector<std::string> render = {"render", scene, "--rig", (f / "rig.json").string(), "--analysis",
-                                           analysis.string(), "-o", (f / "relit.exr").string(), "--spp", "1"};
+  const std::vector<std::string> render = {"render",     scene,
+                                           "--rig",      (f / "rig.json").string(),
+                                           "--analysis", analysis.string(),
+                                           "-o",         (f / "relit.exr").string(),
+                                           "--spp",      "1"};
   for (const char* image : {"albedo_surface.exr", "albedo.exr", "background.exr", "mask.exr"}) {
     const std::string original = read_text(analysis / image);
     relight::write_exr(analysis / image, Image(8, 6, Vec3(0.5f, 0.4f, 0.3f)));  // the photo's size, other pixels
     const auto [status, err] = run_cli(render);
     EXPECT_EQ(status, 2) << image << ": " << err;
     EXPECT_NE(err.find("analysis.json: /images_hash: the images of the analysis are not the ones it describes"),
-              std::string::npos) << image << ": " << err;
+              std::string::npos)
+        << image << ": " << err;
     write_text(analysis / image, original);
   }
   EXPECT_EQ(run_cli(render).status, 0) << "the original images restored";

@@ -85,20 +85,4 @@ using AlbedoObserver = std::function<void(int render, const AlbedoImages& albedo
 Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& options,
                  Progress& progress, const AlbedoObserver& on_albedo = {});
 
-// The analysis folder: illumination.exr, albedo.exr (coverage-weighted, like
-// albedo_gt.exr), albedo.png, mask.exr, and analysis.json with the options,
-// the hash of the scene's inputs (analysis_input_hash) and of the images, and
-// the per-surface albedo (albedo_surface.exr) that later renders need.
-void save_analysis(const std::filesystem::path& folder, const Analysis& analysis, const Scene& scene);
-// Loads a folder written by save_analysis for this scene; throws InputError
-// if it is missing, incomplete, made for a photo of another size, stale
-// (made from a scene.json, photo, geometry or probe that has changed since),
-// or holds images other than those its analysis.json describes.
-Analysis load_analysis(const std::filesystem::path& folder, const Scene& scene);
-
-// A hash of everything an analysis depends on: the scene.json file, the
-// photo, geometry and probe files (their bytes), and the options that
-// analysis.json records.
-std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& options);
-
 }  // namespace relight

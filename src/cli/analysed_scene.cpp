@@ -1,4 +1,5 @@
 // The scene and analysis that render and preview work from.
+#include "analysis/analysis_folder.h"
 #include "cli/commands.h"
 #include "io/scene_io.h"
 

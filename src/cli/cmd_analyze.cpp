@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "analysis/analysis_folder.h"
 #include "analysis/view_checks.h"
 #include "cli/commands.h"
 #include "core/error.h"
@@ -63,15 +64,15 @@ void add_analyze_command(CLI::App& app, Action& action) {
                 "also write the albedo each render recovered, albedo_render1.exr (white surfaces), "
                 "albedo_render2.exr, ... (to follow the interreflection iteration)");
   add_sampling_options(*cmd, args->options);
-  cmd->footer(help_footer(
-      "Simulates the light the photo was taken under (from the scene's lights, probes and background) and\n"
-      "  divides the photo by it, leaving the albedo. The folder is reused by 'relight render --analysis'.",
-      {{"relight analyze examples/room/scene.json -o out/room",
-        "writes out/room/{illumination.exr, albedo.exr, albedo.png, mask.exr, analysis.json}"},
-       {"relight analyze scene.json -o analysis --strategy probe --spp 256",
-        "simulate the light from the probes only, with less noise"},
-       {"relight analyze scene.json -o analysis --method radiosity",
-        "simulate it by radiosity on a mesh refined along the photo's shadows (the thesis's method)"}}));
+  cmd->footer(
+      help_footer("Simulates the light the photo was taken under (from the scene's lights, probes and background) and\n"
+                  "  divides the photo by it, leaving the albedo. The folder is reused by 'relight render --analysis'.",
+                  {{"relight analyze examples/room/scene.json -o out/room",
+                    "writes out/room/{illumination.exr, albedo.exr, albedo.png, mask.exr, analysis.json}"},
+                   {"relight analyze scene.json -o analysis --strategy probe --spp 256",
+                    "simulate the light from the probes only, with less noise"},
+                   {"relight analyze scene.json -o analysis --method radiosity",
+                    "simulate it by radiosity on a mesh refined along the photo's shadows (the thesis's method)"}}));
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
       const auto start = std::chrono::steady_clock::now();

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "analysis/analysis_folder.h"
 #include "analysis/strategy.h"
 #include "core/error.h"
 #include "io/scene_io.h"

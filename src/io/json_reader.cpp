@@ -19,7 +19,8 @@ JsonReader::json JsonReader::parse_file(const fs::path& path) {
 
 JsonReader::json JsonReader::parse_text(const std::string& name, const std::string& text) {
   const auto line_at = [&](size_t offset) {
-    return "line " + std::to_string(1 + std::count(text.begin(), text.begin() + long(std::min(offset, text.size())), '\n'));
+    return "line " +
+           std::to_string(1 + std::count(text.begin(), text.begin() + long(std::min(offset, text.size())), '\n'));
   };
   try {
     return json::parse(text);
@@ -67,6 +68,14 @@ float JsonReader::number(const json& v, const std::string& pointer, float min, f
   if (!std::isfinite(d) || d < min || d > max)
     fail(pointer, fmt::format("expected a number in [{}, {}], found {}", min, max, d));
   return float(d);
+}
+
+uint64_t JsonReader::unsigned_integer(const json& v, const std::string& pointer, uint64_t max) const {
+  if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<int64_t>() >= 0))
+    fail(pointer, std::string("expected a whole number of at least 0, found ") + v.dump());
+  const uint64_t n = v.get<uint64_t>();
+  if (n > max) fail(pointer, fmt::format("expected a whole number up to {}, found {}", max, n));
+  return n;
 }
 
 float JsonReader::number_above(const json& v, const std::string& pointer, float above) const {

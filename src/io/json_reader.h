@@ -3,6 +3,7 @@
 // (FORMAT.md's rule). Internal to io.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
@@ -35,6 +36,8 @@ class JsonReader {
   float number(const json& v, const std::string& pointer, float min = -3.0e38f, float max = 3.0e38f) const;
   // A number that must be strictly greater than `above`.
   float number_above(const json& v, const std::string& pointer, float above) const;
+  // A whole number in [min, max] (uint64_t for seeds and counts).
+  uint64_t unsigned_integer(const json& v, const std::string& pointer, uint64_t max = UINT64_MAX) const;
   std::string string(const json& v, const std::string& pointer) const;
   bool boolean(const json& v, const std::string& pointer) const;
   Vec3 vec3(const json& v, const std::string& pointer) const;
@@ -51,6 +54,8 @@ class JsonReader {
 };
 
 inline std::string json_child(const std::string& pointer, const std::string& key) { return pointer + "/" + key; }
-inline std::string json_child(const std::string& pointer, size_t index) { return pointer + "/" + std::to_string(index); }
+inline std::string json_child(const std::string& pointer, size_t index) {
+  return pointer + "/" + std::to_string(index);
+}
 
 }  // namespace relight

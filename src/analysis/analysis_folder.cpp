@@ -1,0 +1,210 @@
+#include "analysis/analysis_folder.h"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/content_hash.h"
+#include "io/image_io.h"
+#include "io/input_file.h"
+#include "io/json_reader.h"
+
+namespace relight {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The images of the analysis folder that later renders read. analysis.json is
+// written after them and records their hash, so a folder whose images are not
+// the ones it describes (an analyze killed while rewriting the folder, or a
+// file copied in from another analysis) is refused rather than mixed.
+constexpr const char* kAnalysisImages[] = {"albedo_surface.exr", "albedo.exr", "background.exr", "mask.exr"};
+
+// `file` names where each image is read from: the folder, or the writer's
+// own temporaries before they are renamed into it (the writer hashes its own
+// files, never what another writer may have put in the folder meanwhile).
+std::string analysis_images_hash(const std::function<fs::path(const char* name)>& file) {
+  ContentHash hash;
+  for (const char* name : kAnalysisImages) hash.add_file(file(name));
+  return hash.hex();
+}
+
+// An analysis replaces an analysis: a folder holding files of its names but
+// no analysis.json (a scene's own folder with its mask.exr, say) is refused
+// unless forced, so that nothing of someone else's is overwritten.
+void expect_analysis_folder(const fs::path& folder) {
+  if (force_outputs() || fs::exists(folder / "analysis.json")) return;
+  for (const char* name :
+       {"illumination.exr", "background.exr", "albedo.exr", "albedo_surface.exr", "albedo.png", "mask.exr"})
+    if (fs::exists(fs::symlink_status(folder / name)))
+      throw InputError(folder.string(), "",
+                       std::string("is not an analysis folder (no analysis.json) but holds ") + name +
+                           ", which an analysis would replace; name another folder, or --force to replace it");
+}
+
+// The options analysis.json records: written and read here only.
+void write_options(nlohmann::json& j, const AnalysisOptions& o) {
+  j["method"] = to_string(o.method);
+  j["strategy"] = to_string(o.strategy);
+  j["paths_per_pixel"] = o.paths_per_pixel;
+  j["gbuffer_samples"] = o.gbuffer_samples;
+  j["seed"] = o.seed;
+  j["max_bounces"] = o.max_bounces;
+  j["interreflection"] = o.interreflection;
+  j["bounce_source"] = to_string(o.bounce_source);
+  j["denoise"] = o.denoise;
+  if (o.method == AnalysisMethod::radiosity) {
+    j["node_samples"] = o.node_samples;
+    j["gather_rays"] = o.gather_rays;
+    j["direct_light"] = o.direct_per_pixel ? "pixels" : "nodes";
+  }
+}
+
+// A folder made before a key existed reads as what it was made with then:
+// method path, bounce source albedo.
+AnalysisOptions read_options(const JsonReader& r, const nlohmann::json& j) {
+  const auto count = [&](const char* key) {
+    return int(r.unsigned_integer(r.required(j, "", key), json_child("", key), INT32_MAX));
+  };
+  const auto named = [&](const char* key, const char* absent, auto parse) {
+    const nlohmann::json* v = r.optional(j, key);
+    const std::string name = v ? r.string(*v, json_child("", key)) : absent;
+    const auto parsed = parse(name);
+    if (!parsed) r.fail(json_child("", key), "unknown value '" + name + "'");
+    return *parsed;
+  };
+  AnalysisOptions o;
+  o.method = named("method", "path", parse_analysis_method);
+  o.strategy = named("strategy", "", parse_strategy);
+  o.paths_per_pixel = count("paths_per_pixel");
+  o.gbuffer_samples = count("gbuffer_samples");
+  o.seed = r.unsigned_integer(r.required(j, "", "seed"), "/seed");
+  o.max_bounces = count("max_bounces");
+  o.interreflection = r.boolean(r.required(j, "", "interreflection"), "/interreflection");
+  o.bounce_source = named("bounce_source", "albedo", parse_bounce_source);
+  o.denoise = r.boolean(r.required(j, "", "denoise"), "/denoise");
+  if (o.method == AnalysisMethod::radiosity) {
+    o.node_samples = count("node_samples");
+    o.gather_rays = count("gather_rays");
+    o.direct_per_pixel = r.string(r.required(j, "", "direct_light"), "/direct_light") == "pixels";
+  }
+  return o;
+}
+
+}  // namespace
+
+std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& options) {
+  ContentHash hash;
+  hash.add_file(scene.path);
+  hash.add_file(scene.photo_path);
+  hash.add_file(scene.geometry_path);
+  for (const Probe& probe : scene.probes) hash.add_file(probe.path);
+  hash.add_text(fmt::format("{} {} {} {} {} {} {}", to_string(options.strategy), options.paths_per_pixel,
+                            options.gbuffer_samples, options.seed, options.max_bounces, options.interreflection,
+                            options.denoise));
+  // Added only for the photo's radiance, so that analyses made before it
+  // existed stay valid.
+  if (options.bounce_source == BounceSource::photo) hash.add_text(" bounce-source photo");
+  // Added only for radiosity, so that path analyses made before the method
+  // existed stay valid.
+  if (options.method == AnalysisMethod::radiosity)
+    hash.add_text(
+        fmt::format(" radiosity {} {} {}", options.node_samples, options.gather_rays, options.direct_per_pixel));
+  return hash.hex();
+}
+
+void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene) {
+  create_output_folder(folder);
+  expect_analysis_folder(folder);
+  OutputBatch batch;  // the files appear together, analysis.json with them; the folder is locked meanwhile
+  const int w = a.albedo.albedo.width, h = a.albedo.albedo.height;
+  // The illumination as a user would look at it: the white-diffuse render,
+  // with the environment where the pixel sees no geometry.
+  Image illumination = a.illumination.surface;
+  for (size_t i = 0; i < illumination.size(); ++i)
+    if (a.coverage[i] == 0.0f) illumination.pixels[i] = a.illumination.background.pixels[i];
+  write_exr(folder / "illumination.exr", illumination);
+  write_exr(folder / "background.exr", a.illumination.background);
+  write_exr(folder / "albedo.exr", a.albedo.albedo_coverage);
+  write_exr(folder / "albedo_surface.exr", a.albedo.albedo);
+  write_png(folder / "albedo.png", a.albedo.albedo_coverage);
+  write_exr_scalar(folder / "mask.exr", a.coverage, w, h);
+
+  nlohmann::json j;
+  j["format"] = "relight-analysis/1";
+  j["input_hash"] = analysis_input_hash(scene, a.options);
+  j["images_hash"] = analysis_images_hash([&](const char* name) { return batch.staged(folder / name); });
+  write_options(j, a.options);
+  j["iterations"] = a.iterations;
+  j["residual"] = a.residual;
+  j["width"] = w;
+  j["height"] = h;
+  j["unseen_albedo"] = {a.albedo.mean.x(), a.albedo.mean.y(), a.albedo.mean.z()};
+  j["filled_pixels"] = a.albedo.filled;
+  nlohmann::json triangles = nlohmann::json::array();
+  for (const TriangleAlbedo& t : a.albedo.unseen_triangles)
+    triangles.push_back({t.triangle, t.albedo.x(), t.albedo.y(), t.albedo.z()});
+  j["unseen_triangles"] = std::move(triangles);
+  write_text_atomically(folder / "analysis.json", j.dump(2) + "\n");
+  batch.commit();
+}
+
+Analysis load_analysis(const fs::path& folder, const Scene& scene) {
+  const fs::path meta = folder / "analysis.json";
+  if (!fs::exists(meta)) throw InputError(meta.string(), "", "not found: run 'relight analyze' into this folder first");
+  const FolderLock no_writer_meanwhile(folder, FolderLock::Mode::shared);  // see OutputBatch
+  expect_input_file(meta, "an analysis file (analysis.json)");
+  const nlohmann::json j = JsonReader::parse_file(meta);
+  const JsonReader r(meta.string());
+  r.expect_object(j, "");
+  Analysis a;
+  a.options = read_options(r, j);
+  a.iterations = int(r.unsigned_integer(r.required(j, "", "iterations"), "/iterations", INT32_MAX));
+  if (const nlohmann::json* residual = r.optional(j, "residual")) a.residual = r.number(*residual, "/residual", 0.0f);
+  a.albedo.mean = r.vec3(r.required(j, "", "unseen_albedo"), "/unseen_albedo");
+  if (const nlohmann::json* triangles = r.optional(j, "unseen_triangles")) {
+    if (!triangles->is_array()) r.fail("/unseen_triangles", "expected an array");
+    for (size_t k = 0; k < triangles->size(); ++k) {
+      const nlohmann::json& t = (*triangles)[k];
+      const std::string at = json_child("/unseen_triangles", k);
+      if (!t.is_array() || t.size() != 4) r.fail(at, "expected [triangle, r, g, b]");
+      const uint64_t triangle = r.unsigned_integer(t[0], json_child(at, size_t(0)));
+      if (triangle >= scene.mesh.triangles.size()) r.fail(at, "names a triangle the geometry does not have");
+      a.albedo.unseen_triangles.push_back({uint32_t(triangle), Vec3(r.number(t[1], json_child(at, size_t(1))),
+                                                                    r.number(t[2], json_child(at, size_t(2))),
+                                                                    r.number(t[3], json_child(at, size_t(3))))});
+    }
+  }
+  const uint64_t width = r.unsigned_integer(r.required(j, "", "width"), "/width");
+  const uint64_t height = r.unsigned_integer(r.required(j, "", "height"), "/height");
+  if (width != uint64_t(scene.photo.width) || height != uint64_t(scene.photo.height))
+    r.fail("/width", "the analysis was made for a photo of another size");
+  const auto text = [&](const char* key) {
+    const nlohmann::json* v = r.optional(j, key);
+    return v ? r.string(*v, json_child("", key)) : std::string();
+  };
+  if (text("input_hash") != analysis_input_hash(scene, a.options))
+    r.fail("/input_hash", "the analysis is stale: " + scene.path.string() +
+                              ", its photo, geometry or probes changed since it was made; re-run 'relight analyze'");
+  const auto in_folder = [&](const char* name) { return folder / name; };
+  if (text("images_hash") != analysis_images_hash(in_folder))
+    r.fail("/images_hash",
+           "the images of the analysis are not the ones it describes (an interrupted or mixed analysis); re-run "
+           "'relight analyze'");
+  a.albedo.albedo = read_image(folder / "albedo_surface.exr");
+  a.albedo.albedo_coverage = read_image(folder / "albedo.exr");
+  a.illumination.background = read_image(folder / "background.exr");
+  int w, h;
+  a.coverage = read_scalar_image(folder / "mask.exr", w, h);
+  for (const Image* img : {&a.albedo.albedo, &a.albedo.albedo_coverage, &a.illumination.background})
+    if (img->width != scene.photo.width || img->height != scene.photo.height)
+      throw InputError(folder.string(), "", "an image of the analysis differs in size from the photo");
+  if (w != scene.photo.width || h != scene.photo.height)
+    throw InputError((folder / "mask.exr").string(), "", "differs in size from the photo");
+  return a;
+}
+
+}  // namespace relight
