@@ -30,13 +30,11 @@ using Clock = std::chrono::steady_clock;
 // The scene, with a quick analysis: the engine's speed does not depend on
 // how good the albedo is.
 struct Fixture {
-  Scene scene;
-  std::unique_ptr<RayScene> rays;
-  std::unique_ptr<GBuffer> gbuffer;
-  Analysis analysis;
+  std::unique_ptr<AnalysedScene> analysed;
   Rig rig;
 
   Fixture() {
+    Scene scene;
     fs::path folder = fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes" / "bookcase";
     if (const char* env = std::getenv("RELIGHT_SCENES")) folder = fs::path(env) / "bookcase";
     if (fs::exists(folder / "scene.json")) {
@@ -48,20 +46,19 @@ struct Fixture {
     }
     std::fprintf(stderr, "session_bench: scene %s (%zu triangles)\n", scene.path.string().c_str(),
                  scene.mesh.triangles.size());
-    rays = std::make_unique<RayScene>(scene.mesh);
     AnalysisOptions options;
     options.strategy = Strategy::lights;
     options.paths_per_pixel = 4;
     options.interreflection = false;
-    gbuffer = std::make_unique<GBuffer>(scene_gbuffer(scene, *rays, options));
-    analysis = analyze(scene, *rays, *gbuffer, options, Progress::silent());
+    analysed = AnalysedScene::analyse(std::move(scene), options, Progress::silent());
     rig = four_lights();
   }
+  const Scene& scene() const { return analysed->scene(); }
 
   // A point and a spot (the ones dragged), an area light and a soft point,
   // placed around what the camera looks at.
   Rig four_lights() const {
-    const CameraSpec& camera = scene.camera.spec();
+    const CameraSpec& camera = scene().camera.spec();
     const Vec3 target = camera.look_at, to_camera = camera.position - target;
     const float d = to_camera.norm();
     const Vec3 up = camera.up.normalized(), side = to_camera.cross(up).normalized();
@@ -127,7 +124,7 @@ RelightSession& session(Backend backend, int size) {
     options.backend = backend;
     options.width = kSizes[size][0];
     options.height = kSizes[size][1];
-    s = std::make_unique<RelightSession>(f.scene, *f.rays, *f.gbuffer, f.analysis, f.rig, options);
+    s = std::make_unique<RelightSession>(*f.analysed, f.rig, options);
     s->wait_for_edit(1);
   }
   return *s;
@@ -137,10 +134,10 @@ RelightSession& session(Backend backend, int size) {
 Light dragged(int index, int step) {
   const Fixture& f = fixture();
   Light light = f.rig.lights[size_t(index)];
-  const float radius = 0.1f * (f.scene.camera.spec().position - f.scene.camera.spec().look_at).norm();
+  const float radius = 0.1f * (f.scene().camera.spec().position - f.scene().camera.spec().look_at).norm();
   const float angle = 0.1f * float(step);
   Vec3 a, b;
-  orthonormal_basis(f.scene.camera.spec().up.normalized(), a, b);
+  orthonormal_basis(f.scene().camera.spec().up.normalized(), a, b);
   light.position += radius * (std::cos(angle) * a + std::sin(angle) * b);
   return light;
 }
@@ -185,19 +182,18 @@ void BM_BackendRender(benchmark::State& state) {
   const int size = int(state.range(1)), index = int(state.range(2));
   Fixture& f = fixture();
   open_session().reset();  // its refinement would run beside the backend
-  const NewIllumination illumination(f.scene, *f.rays, *f.gbuffer, f.analysis);
-  const RelightView view(f.scene, *f.rays, *f.gbuffer, f.analysis, illumination.environment(), kSizes[size][0],
-                         kSizes[size][1]);
+  const AnalysedScene& a = *f.analysed;
+  const RelightView view(a, kSizes[size][0], kSizes[size][1]);
   std::unique_ptr<DirectLightBackend> backend;
   if (state.range(0)) {
     std::string why;
-    backend = GlRelighter::open(f.scene.mesh, view.surfaces(), {}, why);
+    backend = GlRelighter::open(a.scene().mesh, view.surfaces(), {}, why);
     if (!backend) {
       state.SkipWithError(("OpenGL unavailable: " + why).c_str());
       return;
     }
   } else {
-    backend = std::make_unique<CpuDirectLight>(view.surfaces(), *f.rays);
+    backend = std::make_unique<CpuDirectLight>(view.surfaces(), a.rays());
   }
   Image out;
   int step = 0;

@@ -24,24 +24,23 @@ namespace fs = std::filesystem;
 namespace {
 
 std::shared_ptr<StudioScene> bench_scene() {
-  auto s = std::make_shared<StudioScene>();
   fs::path folder = fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes" / "bookcase";
   if (const char* env = std::getenv("RELIGHT_SCENES")) folder = fs::path(env) / "bookcase";
+  Scene scene;
   if (fs::exists(folder / "scene.json")) {
-    s->scene = load_scene(folder / "scene.json");
+    scene = load_scene(folder / "scene.json");
   } else {
-    s->scene = example::room_scene(640, 480);
-    s->scene.photo = Image(640, 480, Vec3::Constant(0.2f));
+    scene = example::room_scene(640, 480);
+    scene.photo = Image(640, 480, Vec3::Constant(0.2f));
   }
-  std::fprintf(stderr, "studio_bench: %zu triangles\n", s->scene.mesh.triangles.size());
-  s->rays = std::make_unique<RayScene>(s->scene.mesh);
+  std::fprintf(stderr, "studio_bench: %zu triangles\n", scene.mesh.triangles.size());
   // A quick analysis: the view's speed does not depend on the albedo.
   AnalysisOptions options;
   options.strategy = Strategy::lights;
   options.paths_per_pixel = 2;
   options.interreflection = false;
-  s->gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s->scene, *s->rays, options));
-  s->analysis = analyze(s->scene, *s->rays, *s->gbuffer, options, Progress::silent());
+  auto s = std::make_shared<StudioScene>();
+  s->analysed = AnalysedScene::analyse(std::move(scene), options, Progress::silent());
   return s;
 }
 
@@ -56,19 +55,19 @@ void BM_GeometryViewOrbit(benchmark::State& state) {
   static const std::shared_ptr<StudioScene> scene = bench_scene();
   SessionOptions options;
   options.settle = std::chrono::hours(1);  // no refinement running beside the measurement
-  LightingDocument document(scene, rig_from_scene(scene->scene), options);
+  LightingDocument document(scene, rig_from_scene(scene->analysed->scene()), options);
   document.session().wait_for_edit(1);
   GeometryView view;
   view.resize(int(state.range(0)), int(state.range(1)));
   view.set_document(&document);
   QImage target(view.size(), QImage::Format_RGB32);
-  const float distance = 1.3f * scene->scene.mesh.bounds().diagonal().norm();
+  const float distance = 1.3f * scene->analysed->scene().mesh.bounds().diagonal().norm();
   float yaw = 0.0f;
   for (auto _ : state) {
     view.set_orbit(yaw += 1.0f, 35.0f, distance);  // every frame redraws the mesh
     view.render(&target);
   }
-  state.counters["triangles"] = double(scene->scene.mesh.triangles.size());
+  state.counters["triangles"] = double(scene->analysed->scene().mesh.triangles.size());
 }
 BENCHMARK(BM_GeometryViewOrbit)->Args({420, 320})->Args({800, 600})->Unit(benchmark::kMillisecond);
 

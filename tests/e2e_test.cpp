@@ -43,19 +43,15 @@ class ReferenceScene : public testing::TestWithParam<std::string> {
   bool present() const { return fs::exists(folder() / "scene.json"); }
 
   // Loads the scene and analyses it with `options` (the scene's default
-  // strategy); the G-buffer and rays stay for later renders.
-  void analyse(AnalysisOptions options) {
-    scene = load_scene(folder() / "scene.json");
+  // strategy).
+  const AnalysedScene& analyse(AnalysisOptions options) {
+    Scene scene = load_scene(folder() / "scene.json");
     options.strategy = default_strategy(scene);
-    rays = std::make_unique<RayScene>(scene.mesh);
-    gbuffer = std::make_unique<GBuffer>(scene_gbuffer(scene, *rays, options));
-    analysis = analyze(scene, *rays, *gbuffer, options, Progress::silent());
+    analysed = AnalysedScene::analyse(std::move(scene), options, Progress::silent());
+    return *analysed;
   }
 
-  Scene scene;
-  std::unique_ptr<RayScene> rays;
-  std::unique_ptr<GBuffer> gbuffer;
-  Analysis analysis;
+  std::unique_ptr<AnalysedScene> analysed;
 };
 
 TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
@@ -63,7 +59,7 @@ TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
     GTEST_SKIP() << "reference scene " << folder() << " not found (set RELIGHT_SCENES to the scenes folder)";
   AnalysisOptions analysis_options;
   analysis_options.paths_per_pixel = 32;
-  analyse(analysis_options);
+  const Analysis& analysis = analyse(analysis_options).analysis();
   const AnalysisOptions& options = analysis.options;
   const fs::path folder = this->folder();
 
@@ -82,7 +78,7 @@ TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
     const Rig rig = load_rig(entry.path());
     RenderOptions render_options;
     render_options.paths_per_pixel = options.paths_per_pixel;
-    const Image relit = render_rig(scene, *rays, *gbuffer, analysis, rig, render_options, Progress::silent());
+    const Image relit = render_rig(*analysed, rig, render_options, Progress::silent());
     const double db = relit_psnr(relit, folder / "relit" / (name + ".exr"));
     std::printf("[ figures  ] %s rig %s re-lit PSNR %.2f dB\n", GetParam().c_str(), name.c_str(), db);
     if (name == "same") {
@@ -111,8 +107,7 @@ TEST_P(ReferenceSceneRadiosity, RadiosityAlbedo) {
   AnalysisOptions options;
   options.method = AnalysisMethod::radiosity;
   options.paths_per_pixel = 9;
-  analyse(options);
-  const double albedo = albedo_psnr(analysis.albedo.albedo_coverage, folder());
+  const double albedo = albedo_psnr(analyse(options).analysis().albedo.albedo_coverage, folder());
   std::printf("[ figures  ] %s radiosity albedo PSNR %.2f dB\n", GetParam().c_str(), albedo);
   EXPECT_GE(albedo, GetParam() == "outdoor" ? 32.2 : 27.2);
 }

@@ -2,14 +2,13 @@
 // albedo by the program's own path tracer, analyse the photo, and compare the
 // recovered albedo and a re-lit image with the truth.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cstdio>
 
 #include "relight/render_rig.h"
 #include "render/render_illumination.h"
 #include "room_scene.h"
-
-#include <tbb/global_control.h>
 
 using namespace relight;
 
@@ -64,15 +63,15 @@ Analysis analyse_room(const RayScene& rays, const GBuffer& gbuffer, bool interre
 
 TEST(RoundTrip, RecoversTheKnownAlbedoAndRelights) {
   const RoomTruth& t = room_truth();
-  const RayScene rays(t.scene.mesh);
-  const GBuffer gbuffer = scene_gbuffer(t.scene, rays, AnalysisOptions{});
-  const Analysis analysis = analyse_room(rays, gbuffer, true);
+  AnalysisOptions options;
+  options.strategy = Strategy::lights;
+  const std::unique_ptr<AnalysedScene> analysed = AnalysedScene::analyse(Scene(t.scene), options, Progress::silent());
+  const Analysis& analysis = analysed->analysis();
   const double albedo_db = psnr(clip01(analysis.albedo.albedo_coverage), clip01(t.albedo_gt));
   std::printf("[ figures  ] room albedo PSNR %.2f dB\n", albedo_db);
   EXPECT_GE(albedo_db, 28.0);
 
-  const Image relit = render_rig(t.scene, rays, gbuffer, analysis, example::evening_rig(), RenderOptions{},
-                                 Progress::silent());
+  const Image relit = render_rig(*analysed, example::evening_rig(), RenderOptions{}, Progress::silent());
   const double relit_db = psnr(tonemap_reinhard_srgb(relit), tonemap_reinhard_srgb(t.evening));
   std::printf("[ figures  ] room evening re-lit PSNR %.2f dB\n", relit_db);
   EXPECT_GE(relit_db, 32.0);
@@ -96,8 +95,9 @@ TEST(RoundTrip, SameSeedGivesTheSameImageWhateverTheThreads) {
   const GBuffer gbuffer = scene_gbuffer(t.scene, rays, options);
   const Lighting lighting = strategy_lighting(t.scene, rays, Strategy::lights);
   const Integrator integrator(rays, lighting, nullptr);
-  const Image a = render_illumination(gbuffer, t.scene.camera, integrator, illumination_options(options),
-                                      Progress::silent()).surface;
+  const Image a =
+      render_illumination(gbuffer, t.scene.camera, integrator, illumination_options(options), Progress::silent())
+          .surface;
   Image b;
   {
     tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);

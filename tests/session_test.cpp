@@ -2,14 +2,14 @@
 // exactly render_rig's image, an edit re-renders only the light it changes
 // (a colour or power change none at all), stale work never reaches the
 // screen, other view sizes and the OpenGL backend give the same picture.
+#include "relight/session.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 
 #include "io/image_io.h"
-
-#include "relight/session.h"
 #include "render/render_illumination.h"
 #include "room_scene.h"
 
@@ -17,37 +17,28 @@ using namespace relight;
 
 namespace {
 
-struct Room {
-  Scene scene;
-  std::unique_ptr<RayScene> rays;
-  std::unique_ptr<GBuffer> gbuffer;
-  Analysis analysis;
-};
-
 // A small analysed room (its photo made by the path tracer with the known albedo).
-const Room& room() {
-  static const Room r = [] {
-    Room room;
-    room.scene = example::room_scene(120, 90);
-    room.scene.path = "room";
-    room.rays = std::make_unique<RayScene>(room.scene.mesh);
-    Lighting lighting;
-    lighting.lights = room.scene.lights;
-    lighting.environment = Environment::constant(room.scene.background);
-    const example::RoomAlbedo albedo = example::room_albedo();
-    const Integrator integrator(*room.rays, lighting, &albedo);
-    const GBuffer photo_samples(room.scene.camera, *room.rays, 4, 5, "room");
-    room.scene.photo =
-        synthesize_photo(photo_samples, room.scene.camera, integrator, albedo, 16, 3, Progress::silent());
+const AnalysedScene& room() {
+  static const std::unique_ptr<AnalysedScene> r = [] {
+    Scene scene = example::room_scene(120, 90);
+    scene.path = "room";
+    {
+      const RayScene rays(scene.mesh);
+      Lighting lighting;
+      lighting.lights = scene.lights;
+      lighting.environment = Environment::constant(scene.background);
+      const example::RoomAlbedo albedo = example::room_albedo();
+      const Integrator integrator(rays, lighting, &albedo);
+      const GBuffer photo_samples(scene.camera, rays, 4, 5, "room");
+      scene.photo = synthesize_photo(photo_samples, scene.camera, integrator, albedo, 16, 3, Progress::silent());
+    }
     AnalysisOptions options;
     options.strategy = Strategy::lights;
     options.paths_per_pixel = 8;
     options.interreflection = false;
-    room.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(room.scene, *room.rays, options));
-    room.analysis = analyze(room.scene, *room.rays, *room.gbuffer, options, Progress::silent());
-    return room;
+    return AnalysedScene::analyse(std::move(scene), options, Progress::silent());
   }();
-  return r;
+  return *r;
 }
 
 // Cheap refinement, so that the tests converge in a second or two.
@@ -62,8 +53,8 @@ SessionOptions quick_options() {
 }
 
 Image offline_render(const Rig& rig, const SessionOptions& options) {
-  const Room& r = room();
-  return render_rig(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options.final_render, Progress::silent());
+  const AnalysedScene& r = room();
+  return render_rig(r, rig, options.final_render, Progress::silent());
 }
 
 // Where to write images for a look (RELIGHT_TEST_IMAGES=folder), if anywhere.
@@ -98,10 +89,10 @@ Light sun_light() {
 }
 
 TEST(Session, ConvergesToExactlyTheOfflineRender) {
-  const Room& r = room();
+  const AnalysedScene& r = room();
   const SessionOptions options = quick_options();
   Rig rig = example::evening_rig();
-  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  RelightSession session(r, rig, options);
   const Frame first = session.wait_until_converged();
   EXPECT_EQ(first.quality, FrameQuality::converged);
   EXPECT_EQ(max_difference(*first.image, offline_render(rig, options)), 0.0f);
@@ -114,10 +105,10 @@ TEST(Session, ConvergesToExactlyTheOfflineRender) {
 }
 
 TEST(Session, StaleRendersNeverReachTheFinalImage) {
-  const Room& r = room();
+  const AnalysedScene& r = room();
   const SessionOptions options = quick_options();
   Rig rig = example::evening_rig();
-  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  RelightSession session(r, rig, options);
   // A drag: moves in quick succession, while earlier ones are still rendering.
   for (int i = 1; i <= 8; ++i) {
     rig.lights[1] = moved(rig.lights[1], Vec3(0.05f, 0.0f, 0.0f));
@@ -134,11 +125,11 @@ TEST(Session, StaleRendersNeverReachTheFinalImage) {
 // cached image times its emission. Refinement is held back (settle) so the
 // caches stay as they are.
 TEST(Session, RecolouringAndRepoweringCastNoRay) {
-  const Room& r = room();
+  const AnalysedScene& r = room();
   SessionOptions options = quick_options();
   options.settle = std::chrono::hours(1);
   Rig rig = example::evening_rig();
-  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  RelightSession session(r, rig, options);
   const Frame start = session.wait_for_edit(1);
   const SessionStats stats = session.stats();
   EXPECT_EQ(stats.interactive_renders, 2u);
@@ -170,9 +161,9 @@ TEST(Session, RecolouringAndRepoweringCastNoRay) {
 }
 
 TEST(Session, MovingOneLightRendersOnlyThatLight) {
-  const Room& r = room();
+  const AnalysedScene& r = room();
   Rig rig = example::evening_rig();
-  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, quick_options());
+  RelightSession session(r, rig, quick_options());
   session.wait_until_converged();
   const SessionStats stats = session.stats();
   const Frame frame = session.wait_for_edit(session.set_light(1, moved(rig.lights[1], Vec3(0.3f, 0.0f, 0.0f))));
@@ -181,10 +172,10 @@ TEST(Session, MovingOneLightRendersOnlyThatLight) {
 }
 
 TEST(Session, AddsAndRemovesLights) {
-  const Room& r = room();
+  const AnalysedScene& r = room();
   const SessionOptions options = quick_options();
   Rig rig = example::evening_rig();
-  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  RelightSession session(r, rig, options);
   const Light sun = sun_light();
   session.add_light(sun);
   session.remove_light(0);
@@ -196,10 +187,10 @@ TEST(Session, AddsAndRemovesLights) {
 // Undo of a delete puts a light back in the middle: that light is rendered,
 // the others keep their images.
 TEST(Session, InsertingALightRendersOnlyThatLight) {
-  const Room& r = room();
+  const AnalysedScene& r = room();
   const SessionOptions options = quick_options();
   Rig rig = example::evening_rig();
-  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  RelightSession session(r, rig, options);
   session.wait_until_converged();
   const SessionStats before = session.stats();
   session.insert_light(1, sun_light());
@@ -215,10 +206,10 @@ TEST(Session, InsertingALightRendersOnlyThatLight) {
 // Opening a rig: a light that did not move keeps its images (a new colour
 // or power costs no ray); a moved or new one is rendered.
 TEST(Session, ANewRigRendersOnlyTheLightsThatMovedOrAreNew) {
-  const Room& r = room();
+  const AnalysedScene& r = room();
   const SessionOptions options = quick_options();
   const Rig evening = example::evening_rig();
-  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, evening, options);
+  RelightSession session(r, evening, options);
   session.wait_until_converged();
   const SessionStats before = session.stats();
 
@@ -245,9 +236,9 @@ TEST(Session, ANewRigRendersOnlyTheLightsThatMovedOrAreNew) {
 // The drop at the end of a drag sets the light the last move left: no edit,
 // so the refinement of that position goes on.
 TEST(Session, SettingALightAsItIsMakesNoEdit) {
-  const Room& r = room();
+  const AnalysedScene& r = room();
   Rig rig = example::evening_rig();
-  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, quick_options());
+  RelightSession session(r, rig, quick_options());
   const uint64_t move = session.set_light(1, moved(rig.lights[1], Vec3(0.3f, 0.0f, 0.0f)));
   session.wait_for_edit(move);
   const uint64_t cancelled = session.stats().cancelled;  // whatever the move itself cancelled
@@ -264,15 +255,15 @@ TEST(Session, SettingALightAsItIsMakesNoEdit) {
 // A view twice the photo's size shows the same picture: averaged down 2x2
 // it matches the photo-size render.
 TEST(Session, AViewOfAnotherSizeShowsTheSamePicture) {
-  const Room& r = room();
+  const AnalysedScene& r = room();
   SessionOptions options = quick_options();
-  options.width = 2 * r.scene.photo.width;
-  options.height = 2 * r.scene.photo.height;
+  options.width = 2 * r.scene().photo.width;
+  options.height = 2 * r.scene().photo.height;
   const Rig rig = example::evening_rig();
-  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  RelightSession session(r, rig, options);
   const Image& big = *session.wait_until_converged().image;
   ASSERT_EQ(big.width, options.width);
-  Image small(r.scene.photo.width, r.scene.photo.height);
+  Image small(r.scene().photo.width, r.scene().photo.height);
   for (int y = 0; y < small.height; ++y)
     for (int x = 0; x < small.width; ++x)
       small.at(x, y) = 0.25f * (big.at(2 * x, 2 * y) + big.at(2 * x + 1, 2 * y) + big.at(2 * x, 2 * y + 1) +
@@ -283,11 +274,11 @@ TEST(Session, AViewOfAnotherSizeShowsTheSamePicture) {
 }
 
 TEST(Session, FallsBackToTheCpuWithoutOpenGL) {
-  const Room& r = room();
+  const AnalysedScene& r = room();
   SessionOptions options = quick_options();
   options.backend = Backend::gl;
   setenv("RELIGHT_GL", "off", 1);
-  RelightSession session(r.scene, *r.rays, *r.gbuffer, r.analysis, example::evening_rig(), options);
+  RelightSession session(r, example::evening_rig(), options);
   unsetenv("RELIGHT_GL");
   EXPECT_EQ(session.backend(), Backend::cpu);
   EXPECT_NE(session.backend_note().find("OpenGL unavailable"), std::string::npos);
@@ -297,15 +288,15 @@ TEST(Session, FallsBackToTheCpuWithoutOpenGL) {
 // The OpenGL backend's frames while a light moves look like the CPU
 // backend's, and the session still converges to the offline render.
 TEST(Session, OpenGLBackendShowsTheSameAndConvergesTheSame) {
-  const Room& r = room();
+  const AnalysedScene& r = room();
   SessionOptions options = quick_options();
   options.settle = std::chrono::hours(1);  // no refinement: compare the interactive frames
   options.backend = Backend::gl;
   const Rig rig = example::evening_rig();
-  RelightSession gl(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  RelightSession gl(r, rig, options);
   if (gl.backend() != Backend::gl) GTEST_SKIP() << gl.backend_note();
   options.backend = Backend::cpu;
-  RelightSession cpu(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  RelightSession cpu(r, rig, options);
   const Frame on_gl = gl.wait_for_edit(1), on_cpu = cpu.wait_for_edit(1);
   EXPECT_EQ(on_gl.quality, FrameQuality::interactive);
   keep_image("room_interactive_gl", *on_gl.image);
@@ -316,7 +307,7 @@ TEST(Session, OpenGLBackendShowsTheSameAndConvergesTheSame) {
 
   options.backend = Backend::gl;
   options.settle = std::chrono::milliseconds(20);
-  RelightSession converging(r.scene, *r.rays, *r.gbuffer, r.analysis, rig, options);
+  RelightSession converging(r, rig, options);
   EXPECT_EQ(max_difference(*converging.wait_until_converged().image, offline_render(rig, options)), 0.0f);
 }
 

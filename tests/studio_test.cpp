@@ -5,14 +5,14 @@
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QLineEdit>
-#include <QMouseEvent>
-#include <QPushButton>
 #include <QMessageBox>
+#include <QMouseEvent>
 #include <QProcess>
+#include <QPushButton>
 #include <QSettings>
-#include <QTimer>
 #include <QSignalSpy>
 #include <QTemporaryDir>
+#include <QTimer>
 #include <QtTest/QtTest>
 #include <filesystem>
 #include <memory>
@@ -31,11 +31,11 @@ using namespace relight::gui;
 namespace fs = std::filesystem;
 
 // Exact equality (QCOMPARE compares floats fuzzily).
-#define EXPECT_EXACT(a, b)                                                                                   \
-  QVERIFY2((a) == (b), qPrintable(QStringLiteral("%1 = %2, expected %3 = %4")                                \
-                                      .arg(#a)                                                               \
-                                      .arg(double(a), 0, 'g', 9)                                             \
-                                      .arg(#b)                                                               \
+#define EXPECT_EXACT(a, b)                                                    \
+  QVERIFY2((a) == (b), qPrintable(QStringLiteral("%1 = %2, expected %3 = %4") \
+                                      .arg(#a)                                \
+                                      .arg(double(a), 0, 'g', 9)              \
+                                      .arg(#b)                                \
                                       .arg(double(b), 0, 'g', 9)))
 
 namespace {
@@ -486,7 +486,7 @@ class StudioTest : public QObject {
     QTest::mouseClick(&view, Qt::LeftButton, {}, centre);
     const Camera& camera = document().session().view().camera();
     SurfacePoint hit;
-    QVERIFY(document().studio_scene().rays->intersect(
+    QVERIFY(document().studio_scene().analysed->rays().intersect(
         camera.position(), camera.ray_direction(float(pixel->x()), float(pixel->y())), hit));
     const Vec3 offset = document().light(0).position - hit.position;
     // A fifth of the camera's distance out along the surface normal.

@@ -76,7 +76,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
       const auto start = std::chrono::steady_clock::now();
-      LoadedScene s = load_for_rendering(args->scene, args->options, progress);
+      LoadedScene s = load_for_analysis(args->scene, args->options, progress);
       warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
       AnalysisOptions options = args->options;
       options.strategy = args->strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args->strategy);

@@ -40,7 +40,7 @@ void add_fit_command(CLI::App& app, Action& action) {
         "also correct the lights' positions and directions from the shadows"}}));
   cmd->callback([&action, args] {
     action = [args](Progress& progress) {
-      LoadedScene s = load_for_rendering(args->scene, args->options, progress);
+      LoadedScene s = load_for_analysis(args->scene, args->options, progress);
       if (args->register_camera) {
         register_and_report(s.scene, *s.rays, RegistrationOptions{}, progress);
         s.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s.scene, *s.rays, args->options));

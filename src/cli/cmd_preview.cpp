@@ -104,18 +104,18 @@ void run_preview(const PreviewArgs& args, Progress& progress) {
   const fs::path out(args.out);
   create_output_folder(out);
 
-  const AnalysedScene analysed(args.scene, args.analysis, args.options, progress);
-  const LoadedScene& s = analysed.loaded;
-  RelightSession session(s.scene, *s.rays, *s.gbuffer, analysed.analysis, rig, options);
+  const std::unique_ptr<AnalysedScene> analysed =
+      load_analysed_scene(args.scene, args.analysis, args.options, progress);
+  const Scene& scene = analysed->scene();
+  RelightSession session(*analysed, rig, options);
   if (!session.backend_note().empty()) std::printf("%s\n", session.backend_note().c_str());
   std::printf("preview: %s backend, %dx%d; refining the starting view first...\n", to_string(session.backend()),
               session.view().width(), session.view().height());
   session.wait_until_converged();
 
   const Light start = rig.lights[0];
-  const Vec3 up = s.scene.camera.spec().up.normalized();
-  const float radius =
-      args.radius > 0.0f ? args.radius : 0.25f * (start.position - s.scene.camera.spec().look_at).norm();
+  const Vec3 up = scene.camera.spec().up.normalized();
+  const float radius = args.radius > 0.0f ? args.radius : 0.25f * (start.position - scene.camera.spec().look_at).norm();
   std::vector<double> frame_ms;
   Frame first, last;
   for (int i = 0; i < args.frames; ++i) {

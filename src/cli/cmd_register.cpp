@@ -47,7 +47,7 @@ struct RegisterArgs {
 void run_register(const RegisterArgs& args, Progress& progress) {
   AnalysisOptions load;
   load.gbuffer_samples = 1;
-  LoadedScene s = load_for_rendering(args.scene, load, progress);
+  LoadedScene s = load_for_analysis(args.scene, load, progress);
   RegistrationOptions options = args.options;
   options.refine_position = !args.fixed_position;
   register_and_report(s.scene, *s.rays, options, progress);

@@ -29,13 +29,12 @@ void run_render(const RenderArgs& args, Progress& progress) {
   const Rig rig = load_rig(args.rig);
   fs::path out(args.out);
   if (out.extension() != ".exr") out += ".exr";
-  const AnalysedScene analysed(args.scene, args.analysis, args.options, progress);
-  const LoadedScene& s = analysed.loaded;
-  const Analysis& analysis = analysed.analysis;
+  const std::unique_ptr<AnalysedScene> analysed =
+      load_analysed_scene(args.scene, args.analysis, args.options, progress);
   RenderOptions render_options;
   render_options.paths_per_pixel = args.options.paths_per_pixel;
   render_options.max_bounces = args.options.max_bounces;
-  const Image image = render_rig(s.scene, *s.rays, *s.gbuffer, analysis, rig, render_options, progress);
+  const Image image = render_rig(*analysed, rig, render_options, progress);
   fs::path png = out;
   png.replace_extension(".png");
   OutputBatch pair;  // the EXR and the PNG appear together

@@ -10,7 +10,7 @@
 #include <span>
 #include <string>
 
-#include "analysis/analyze.h"
+#include "analysis/analysed_scene.h"
 #include "analysis/camera_registration.h"
 #include "core/progress.h"
 #include "render/ray_scene.h"
@@ -38,34 +38,23 @@ void add_register_command(CLI::App& app, Action& action);
 void add_hdr_merge_command(CLI::App& app, Action& action);
 void add_probe_from_photo_command(CLI::App& app, Action& action);
 
-// A loaded scene with its ray-tracing structure and G-buffer.
+// A scene to analyse, fit or register: loaded, with its ray-tracing
+// structure and the G-buffer `options` make (a scene with its analysis, to
+// relight: AnalysedScene).
 struct LoadedScene {
   Scene scene;
   std::unique_ptr<RayScene> rays;
   std::unique_ptr<GBuffer> gbuffer;
 };
-LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options, const Progress& progress);
-// The same for a scene already loaded from scene_path.
-LoadedScene prepare_for_rendering(Scene scene, const std::string& scene_path, const AnalysisOptions& options);
+LoadedScene load_for_analysis(const std::string& scene_path, const AnalysisOptions& options, const Progress& progress);
+// Logs what scene_path holds: photo size, triangles, lights, probes.
+void log_scene(const Scene& scene, const std::string& scene_path);
 
-// A scene loaded for rendering with its analysis: read from analysis_folder
-// (whose seed and sub-pixel samples then make the G-buffer) or, where that
-// is empty, made now with `options`. Built in place and never moved: the
-// ray-tracing structure refers to the scene's mesh.
-struct AnalysedScene {
-  AnalysedScene(const std::string& scene_path, const std::string& analysis_folder, AnalysisOptions options,
-                Progress& progress);
-  AnalysedScene(const AnalysedScene&) = delete;
-  AnalysedScene& operator=(const AnalysedScene&) = delete;
-
-  Analysis analysis;
-  LoadedScene loaded;
-
- private:
-  // The scene is read once: the analysis is checked against it, then it is rendered.
-  AnalysedScene(Scene scene, const std::string& scene_path, const std::string& analysis_folder, AnalysisOptions options,
-                Progress& progress);
-};
+// scene.json loaded with its analysis: read from analysis_folder or, where
+// that is empty, made now with `options` and the strategy the scene's data
+// suggests.
+std::unique_ptr<AnalysedScene> load_analysed_scene(const std::string& scene_path, const std::string& analysis_folder,
+                                                   AnalysisOptions options, Progress& progress);
 
 // A man-page style --help footer: DESCRIPTION, EXAMPLES (each a command line
 // and what it does), EXIT STATUS and where the full documentation is.

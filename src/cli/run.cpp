@@ -58,16 +58,15 @@ class PrintableMessage : public spdlog::custom_flag_formatter {
 };
 }  // namespace
 
-LoadedScene load_for_rendering(const std::string& scene_path, const AnalysisOptions& options,
-                               const Progress& progress) {
-  return prepare_for_rendering(load_scene(scene_path, progress), scene_path, options);
+void log_scene(const Scene& scene, const std::string& scene_path) {
+  spdlog::info("{}: photo {}x{}, {} triangles, {} lights, {} probes", scene_path, scene.photo.width, scene.photo.height,
+               scene.mesh.triangles.size(), scene.lights.size(), scene.probes.size());
 }
 
-LoadedScene prepare_for_rendering(Scene scene, const std::string& scene_path, const AnalysisOptions& options) {
+LoadedScene load_for_analysis(const std::string& scene_path, const AnalysisOptions& options, const Progress& progress) {
   LoadedScene s;
-  s.scene = std::move(scene);
-  spdlog::info("{}: photo {}x{}, {} triangles, {} lights, {} probes", scene_path, s.scene.photo.width,
-               s.scene.photo.height, s.scene.mesh.triangles.size(), s.scene.lights.size(), s.scene.probes.size());
+  s.scene = load_scene(scene_path, progress);
+  log_scene(s.scene, scene_path);
   s.rays = std::make_unique<RayScene>(s.scene.mesh);
   s.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s.scene, *s.rays, options));
   return s;

@@ -7,8 +7,7 @@ LightingDocument::LightingDocument(std::shared_ptr<const StudioScene> scene, con
     : QObject(parent),
       scene_(std::move(scene)),
       rig_(rig),
-      session_(std::make_unique<RelightSession>(scene_->scene, *scene_->rays, *scene_->gbuffer, scene_->analysis, rig_,
-                                                options)) {}
+      session_(std::make_unique<RelightSession>(*scene_->analysed, rig_, options)) {}
 
 LightingDocument::~LightingDocument() = default;
 

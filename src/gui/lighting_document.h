@@ -21,7 +21,7 @@ class LightingDocument : public QObject {
   ~LightingDocument() override;
 
   const StudioScene& studio_scene() const { return *scene_; }
-  const Scene& scene() const { return scene_->scene; }
+  const Scene& scene() const { return scene_->analysed->scene(); }
   const Rig& rig() const { return rig_; }
   int light_count() const { return int(rig_.lights.size()); }
   const Light& light(int index) const { return rig_.lights.at(size_t(index)); }

@@ -109,19 +109,18 @@ void MainWindow::make_menus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
   file->addAction(tr("&Open Scene\u2026"), QKeySequence::Open, this, [this] {
     if (!maybe_keep_changes()) return;
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open scene"), QFileInfo(scene_path_).path(),
-                                                      tr("Scenes (*.json)"));
+    const QString path =
+        QFileDialog::getOpenFileName(this, tr("Open scene"), QFileInfo(scene_path_).path(), tr("Scenes (*.json)"));
     if (!path.isEmpty()) open_scene(path);
   });
   QMenu* recent_scenes = file->addMenu(tr("Recent &Scenes"));
-  connect(recent_scenes, &QMenu::aboutToShow, this, [this, recent_scenes] {
-    fill_recent_menu(recent_scenes, kRecentScenes);
-  });
+  connect(recent_scenes, &QMenu::aboutToShow, this,
+          [this, recent_scenes] { fill_recent_menu(recent_scenes, kRecentScenes); });
   file->addSeparator();
   open_rig_action_ = file->addAction(tr("Open &Rig\u2026"), QKeySequence(tr("Ctrl+Shift+O")), this, [this] {
     if (!maybe_keep_changes()) return;
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open rig"), QFileInfo(scene_path_).path(),
-                                                      tr("Rigs (*.json)"));
+    const QString path =
+        QFileDialog::getOpenFileName(this, tr("Open rig"), QFileInfo(scene_path_).path(), tr("Rigs (*.json)"));
     if (!path.isEmpty()) open_rig(path);
   });
   QMenu* recent_rigs = file->addMenu(tr("Recent R&igs"));
@@ -156,10 +155,10 @@ void MainWindow::make_menus() {
   edit->addAction(undo);
   edit->addAction(redo);
   edit->addSeparator();
-  new_light_action_ = edit->addAction(tr("&New Light\u2026"), QKeySequence(Qt::Key_Insert), this,
-                                      &MainWindow::new_light_dialog);
-  change_light_action_ = edit->addAction(tr("&Change Light\u2026"), QKeySequence(Qt::Key_Return), this,
-                                         &MainWindow::change_light_dialog);
+  new_light_action_ =
+      edit->addAction(tr("&New Light\u2026"), QKeySequence(Qt::Key_Insert), this, &MainWindow::new_light_dialog);
+  change_light_action_ =
+      edit->addAction(tr("&Change Light\u2026"), QKeySequence(Qt::Key_Return), this, &MainWindow::change_light_dialog);
   delete_light_action_ = edit->addAction(tr("&Delete Light\tDel"), this, [this] { delete_light(selected_); });
   // Insert and Enter act where the lights are handled, not in the spin boxes.
   for (QAction* action : {new_light_action_, change_light_action_}) {
@@ -171,8 +170,7 @@ void MainWindow::make_menus() {
   view->addAction(tr("&Reset Geometry View"), this, [this] { lights_->geometry_view().reset_orbit(); });
 }
 
-void MainWindow::run_task(const QString& label, BackgroundTask::Work work,
-                          std::function<void(const QString&)> done) {
+void MainWindow::run_task(const QString& label, BackgroundTask::Work work, std::function<void(const QString&)> done) {
   task_status_->show_task(label);
   auto connection = std::make_shared<QMetaObject::Connection>();
   *connection = connect(&task_, &BackgroundTask::finished, this, [this, done, connection](const QString& error) {
@@ -205,7 +203,7 @@ void MainWindow::open_scene(const QString& scene_path, const QString& rig_path) 
 
 void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path,
                                const QString& rig_path) {
-  Rig rig = rig_from_scene(scene->scene);
+  Rig rig = rig_from_scene(scene->analysed->scene());
   QString loaded_rig_path;
   if (!rig_path.isEmpty()) {
     try {
@@ -216,7 +214,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
     }
   }
   SessionOptions session = options_.session;
-  choose_view_size(scene->scene.photo, options_.max_view_width, session);
+  choose_view_size(scene->analysed->scene().photo, options_.max_view_width, session);
   undo_.clear();
   lights_->set_document(nullptr);
   document_.reset();
@@ -238,15 +236,16 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   });
   connect(document_.get(), &LightingDocument::environmentScaleChanged, photo_panel_, &PhotoPanel::show_ambient);
   photo_panel_->show_ambient(rig.environment_scale);
-  photo_view().set_photo(std::make_shared<const Image>(scene_->scene.photo));
+  photo_view().set_photo(std::make_shared<const Image>(scene_->analysed->scene().photo));
   photo_view().set_relit(nullptr);
   select_light(document_->light_count() > 0 ? 0 : -1);
   remember(kRecentScenes, scene_path);
   if (!rig_path_.isEmpty()) remember(kRecentRigs, rig_path_);
   statusBar()->showMessage(
-      scene_->from_cache ? tr("Analysis read from %1").arg(QString::fromStdString(
-                               analysis_cache_folder(scene_path.toStdString()).filename().string()))
-                         : tr("Scene analysed; the analysis is kept next to the scene for next time"),
+      scene_->from_cache
+          ? tr("Analysis read from %1")
+                .arg(QString::fromStdString(analysis_cache_folder(scene_path.toStdString()).filename().string()))
+          : tr("Scene analysed; the analysis is kept next to the scene for next time"),
       8000);
   if (!document_->session().backend_note().empty())
     statusBar()->showMessage(QString::fromStdString(document_->session().backend_note()), 8000);
@@ -304,8 +303,7 @@ void MainWindow::export_image(const QString& path) {
   run_task(
       tr("Rendering %1\u2026").arg(QFileInfo(path).fileName()),
       [scene, rig, render, exposure, target, png](Progress& progress) {
-        const Image image =
-            render_rig(scene->scene, *scene->rays, *scene->gbuffer, scene->analysis, rig, render, progress);
+        const Image image = render_rig(*scene->analysed, rig, render, progress);
         if (png)
           write_png(target, image, exposure);
         else
@@ -351,8 +349,8 @@ void MainWindow::move_selected_light(const Vec3& delta) {
   }
   Light after = before;
   after.position += delta;
-  undo_.push(new EditLightCommand(*document_, selected_, before, after, tr("Move light"),
-                                  EditLightCommand::Merge::key_move));
+  undo_.push(
+      new EditLightCommand(*document_, selected_, before, after, tr("Move light"), EditLightCommand::Merge::key_move));
 }
 
 void MainWindow::place_selected_light(const QPointF& image_position) {
@@ -365,7 +363,7 @@ void MainWindow::place_selected_light(const QPointF& image_position) {
   const Camera& camera = document_->session().view().camera();
   const Vec3 dir = camera.ray_direction(float(image_position.x()), float(image_position.y()));
   SurfacePoint hit;
-  if (!scene_->rays->intersect(camera.position(), dir, hit)) {
+  if (!scene_->analysed->rays().intersect(camera.position(), dir, hit)) {
     statusBar()->showMessage(tr("No modelled surface there to place the light in front of"), 5000);
     return;
   }
@@ -425,9 +423,9 @@ void MainWindow::show_error(const QString& text) {
 
 bool MainWindow::maybe_keep_changes() {
   if (!document_ || undo_.isClean()) return true;
-  const auto answer = QMessageBox::question(
-      this, tr("Unsaved changes"), tr("The rig has changes that are not saved. Save them first?"),
-      QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Save);
+  const auto answer =
+      QMessageBox::question(this, tr("Unsaved changes"), tr("The rig has changes that are not saved. Save them first?"),
+                            QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Save);
   if (answer == QMessageBox::Cancel) return false;
   if (answer == QMessageBox::Discard) return true;
   save_rig_action_->trigger();
@@ -447,9 +445,10 @@ Light MainWindow::default_new_light() const {
   Light light;
   light.type = LightType::point;
   light.name = tr("light %1").arg(document_->light_count() + 1).toStdString();
-  const CameraSpec& camera = scene_->scene.camera.spec();
+  const CameraSpec& camera = scene_->analysed->scene().camera.spec();
   // Above the point the camera looks at, as bright as the first light there is.
-  light.position = camera.look_at + 0.1f * scene_->scene.mesh.bounds().diagonal().norm() * camera.up.normalized();
+  light.position =
+      camera.look_at + 0.1f * scene_->analysed->scene().mesh.bounds().diagonal().norm() * camera.up.normalized();
   light.power = 100.0f;
   for (const Light& l : document_->rig().lights)
     if (l.type != LightType::directional && l.power > 0.0f) {

@@ -18,30 +18,25 @@ fs::path analysis_cache_folder(const fs::path& scene_path) {
 std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const AnalysisOptions& options,
                                                Progress& progress) {
   auto s = std::make_unique<StudioScene>();
-  s->scene = load_scene(scene_path, progress);
-  s->rays = std::make_unique<RayScene>(s->scene.mesh);
+  Scene scene = load_scene(scene_path, progress);
   const fs::path cache = analysis_cache_folder(scene_path);
   try {
-    s->analysis = load_analysis(cache, s->scene);
+    s->analysed = AnalysedScene::from_folder(std::move(scene), cache);
     s->from_cache = true;
+    return s;
   } catch (const InputError& stale_or_missing) {
     spdlog::info("analysing the scene ({})", stale_or_missing.what());
   }
-  if (s->from_cache) {
-    // The G-buffer must be the analysis's own: its seed and sub-pixel samples.
-    s->gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s->scene, *s->rays, s->analysis.options));
-    return s;
-  }
   AnalysisOptions analysis_options = options;
-  analysis_options.strategy = default_strategy(s->scene);
-  s->gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s->scene, *s->rays, analysis_options));
-  s->analysis = analyze(s->scene, *s->rays, *s->gbuffer, analysis_options, progress);
+  analysis_options.strategy = default_strategy(scene);
+  std::unique_ptr<AnalysedScene> analysed = AnalysedScene::analyse(std::move(scene), analysis_options, progress);
   try {
-    save_analysis(cache, s->analysis, s->scene);
+    save_analysis(cache, analysed->analysis(), analysed->scene());
   } catch (const std::exception& e) {
     spdlog::warn("{}: the analysis cache cannot be written ({}); the next open analyses again", cache.string(),
                  e.what());
   }
+  s->analysed = std::move(analysed);
   return s;
 }
 

@@ -7,18 +7,15 @@
 #include <filesystem>
 #include <memory>
 
-#include "analysis/analyze.h"
+#include "analysis/analysed_scene.h"
 #include "core/progress.h"
 #include "render/ray_scene.h"
 
 namespace relight::gui {
 
 struct StudioScene {
-  Scene scene;
-  std::unique_ptr<RayScene> rays;  // refers to scene.mesh: a StudioScene is never moved
-  std::unique_ptr<GBuffer> gbuffer;
-  Analysis analysis;
-  bool from_cache = false;         // the analysis was read from the cache folder
+  std::unique_ptr<const AnalysedScene> analysed;
+  bool from_cache = false;  // the analysis was read from the cache folder
 };
 
 // The cache folder of a scene: "room/scene.json" -> "room/scene.analysis".
@@ -29,7 +26,7 @@ std::filesystem::path analysis_cache_folder(const std::filesystem::path& scene_p
 // scene's data suggests) and written to the cache. A cache that cannot be
 // written is only a warning. Throws InputError for a bad scene, Cancelled if
 // progress is cancelled.
-std::unique_ptr<StudioScene> load_studio_scene(const std::filesystem::path& scene_path,
-                                               const AnalysisOptions& options, Progress& progress);
+std::unique_ptr<StudioScene> load_studio_scene(const std::filesystem::path& scene_path, const AnalysisOptions& options,
+                                               Progress& progress);
 
 }  // namespace relight::gui

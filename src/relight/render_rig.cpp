@@ -25,18 +25,15 @@ Image compose_relit(const RelitLayers& layers, const Image& illumination, float 
   return out;
 }
 
-NewIllumination::NewIllumination(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
-                                 const Analysis& analysis)
-    : rays_(rays),
-      analysis_(analysis),
-      environment_(strategy_environment(scene, rays, analysis.options.strategy)),
-      bounce_albedo_(scene.camera, gbuffer, analysis.albedo.albedo, analysis.albedo.mean,
-                     analysis.albedo.unseen_triangles) {}
+NewIllumination::NewIllumination(const AnalysedScene& analysed)
+    : analysed_(analysed),
+      bounce_albedo_(analysed.scene().camera, analysed.gbuffer(), analysed.analysis().albedo.albedo,
+                     analysed.analysis().albedo.mean, analysed.analysis().albedo.unseen_triangles) {}
 
 Lighting NewIllumination::rig_lighting(const Rig& rig) const {
   Lighting lighting;
   lighting.lights = rig.lights;
-  lighting.environment = environment_;
+  lighting.environment = analysed_.environment();
   lighting.environment.set_scale(rig.environment_scale);
   return lighting;
 }
@@ -47,20 +44,19 @@ IlluminationImages NewIllumination::render(const GBuffer& gbuffer, const Camera&
   IntegratorOptions integrator_options;
   integrator_options.max_bounces = options.max_bounces;
   integrator_options.first_surface_lights = first_surface_lights;
-  const Integrator integrator(rays_, lighting, &bounce_albedo_, integrator_options);
+  const Integrator integrator(analysed_.rays(), lighting, &bounce_albedo_, integrator_options);
   // The analysis's seed: the noise of the new illumination then follows that
   // of the analysis, and an unchanged rig gives back the photo.
-  IlluminationOptions illumination = illumination_options(analysis_.options);
+  IlluminationOptions illumination = illumination_options(analysed_.analysis().options);
   illumination.paths_per_pixel = options.paths_per_pixel;
   return render_illumination(gbuffer, camera, integrator, illumination, progress, label);
 }
 
-Image render_rig(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Analysis& analysis,
-                 const Rig& rig, const RenderOptions& options, Progress& progress) {
-  const NewIllumination renderer(scene, rays, gbuffer, analysis);
-  const IlluminationImages light =
-      renderer.render(gbuffer, scene.camera, renderer.rig_lighting(rig), options, progress, "new illumination");
-  return compose_relit(photo_layers(scene, analysis), light.surface, rig.environment_scale);
+Image render_rig(const AnalysedScene& analysed, const Rig& rig, const RenderOptions& options, Progress& progress) {
+  const NewIllumination renderer(analysed);
+  const IlluminationImages light = renderer.render(analysed.gbuffer(), analysed.scene().camera,
+                                                   renderer.rig_lighting(rig), options, progress, "new illumination");
+  return compose_relit(photo_layers(analysed.scene(), analysed.analysis()), light.surface, rig.environment_scale);
 }
 
 Rig rig_from_scene(const Scene& scene) {

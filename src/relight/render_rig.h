@@ -6,7 +6,7 @@
 // exactly this image.
 #pragma once
 
-#include "analysis/analyze.h"
+#include "analysis/analysed_scene.h"
 #include "analysis/surface_albedo.h"
 
 namespace relight {
@@ -30,15 +30,14 @@ RelitLayers photo_layers(const Scene& scene, const Analysis& analysis);
 Image compose_relit(const RelitLayers& layers, const Image& illumination, float environment_scale);
 
 // Renders new illumination the way render_rig does: the analysis's
-// environment (built once here), interreflection off the recovered albedo,
-// the analysis's seed and settings. Holds references to its arguments.
+// environment, interreflection off the recovered albedo, the analysis's seed
+// and settings. Holds a reference to the analysed scene.
 class NewIllumination {
  public:
-  // gbuffer: the analysis's (the photo's) G-buffer.
-  NewIllumination(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Analysis& analysis);
+  explicit NewIllumination(const AnalysedScene& analysed);
 
   // The environment at scale 1 (the probes or background, per the strategy).
-  const Environment& environment() const { return environment_; }
+  const Environment& environment() const { return analysed_.environment(); }
   // The rig's lights and the environment x environment_scale.
   Lighting rig_lighting(const Rig& rig) const;
 
@@ -50,16 +49,13 @@ class NewIllumination {
                             bool first_surface_lights = true) const;
 
  private:
-  const RayScene& rays_;
-  const Analysis& analysis_;
-  Environment environment_;
+  const AnalysedScene& analysed_;
   PhotoAlbedo bounce_albedo_;
 };
 
 // The re-lit photo. Pixels that see no geometry show the photo's background
 // times the rig's environment_scale.
-Image render_rig(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Analysis& analysis,
-                 const Rig& rig, const RenderOptions& options, Progress& progress);
+Image render_rig(const AnalysedScene& analysed, const Rig& rig, const RenderOptions& options, Progress& progress);
 
 // A rig holding the scene's own lights and its environment unchanged.
 Rig rig_from_scene(const Scene& scene);

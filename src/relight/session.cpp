@@ -99,18 +99,16 @@ struct RelightSession::Composition {
   FrameQuality quality = FrameQuality::interactive;
 };
 
-RelightSession::RelightSession(const Scene& scene, const RayScene& rays, const GBuffer& photo_gbuffer,
-                               const Analysis& analysis, const Rig& rig, const SessionOptions& options)
-    : scene_(scene),
-      rays_(rays),
-      analysis_(analysis),
+RelightSession::RelightSession(const AnalysedScene& analysed, const Rig& rig, const SessionOptions& options)
+    : scene_(analysed.scene()),
+      rays_(analysed.rays()),
+      analysis_(analysed.analysis()),
       options_(options),
-      illumination_(scene, rays, photo_gbuffer, analysis),
-      view_(std::make_unique<RelightView>(scene, rays, photo_gbuffer, analysis, illumination_.environment(),
-                                          options.width, options.height)) {
+      illumination_(analysed),
+      view_(std::make_unique<RelightView>(analysed, options.width, options.height)) {
   if (options_.backend == Backend::gl) {
     std::string why;
-    fast_ = GlRelighter::open(scene.mesh, view_->surfaces(), options_.shadow_maps, why);
+    fast_ = GlRelighter::open(scene_.mesh, view_->surfaces(), options_.shadow_maps, why);
     if (fast_) {
       backend_ = Backend::gl;
     } else {

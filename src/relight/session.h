@@ -63,12 +63,10 @@ struct SessionStats {
 
 class RelightSession {
  public:
-  // Starts the worker. Holds references to scene, rays, photo_gbuffer (the
-  // analysis's G-buffer) and analysis: they must outlive the session. Falls
-  // back to the CPU backend where OpenGL cannot be opened (backend_note()
-  // says why).
-  RelightSession(const Scene& scene, const RayScene& rays, const GBuffer& photo_gbuffer, const Analysis& analysis,
-                 const Rig& rig, const SessionOptions& options = {});
+  // Starts the worker. Holds a reference to `analysed`: it must outlive the
+  // session. Falls back to the CPU backend where OpenGL cannot be opened
+  // (backend_note() says why).
+  RelightSession(const AnalysedScene& analysed, const Rig& rig, const SessionOptions& options = {});
   ~RelightSession();
   RelightSession(const RelightSession&) = delete;
   RelightSession& operator=(const RelightSession&) = delete;

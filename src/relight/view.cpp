@@ -66,9 +66,11 @@ RelitLayers resampled_layers(const Scene& scene, const GBuffer& photo_gbuffer, c
 
 }  // namespace
 
-RelightView::RelightView(const Scene& scene, const RayScene& rays, const GBuffer& photo_gbuffer,
-                         const Analysis& analysis, const Environment& environment, int width, int height)
-    : camera_(scene.camera), gbuffer_(&photo_gbuffer) {
+RelightView::RelightView(const AnalysedScene& analysed, int width, int height)
+    : camera_(analysed.scene().camera), gbuffer_(&analysed.gbuffer()) {
+  const Scene& scene = analysed.scene();
+  const Analysis& analysis = analysed.analysis();
+  const GBuffer& photo_gbuffer = analysed.gbuffer();
   if ((width == 0) != (height == 0) || width < 0 || height < 0)
     throw std::invalid_argument("RelightView: give both width and height, or neither");
   const bool photo_size = width == 0 || (width == scene.photo.width && height == scene.photo.height);
@@ -76,10 +78,10 @@ RelightView::RelightView(const Scene& scene, const RayScene& rays, const GBuffer
     layers_ = photo_layers(scene, analysis);
   } else {
     camera_ = Camera(scene.camera.spec(), width, height);
-    owned_gbuffer_ = std::make_unique<GBuffer>(camera_, rays, photo_gbuffer.samples_per_pixel(), analysis.options.seed,
-                                               scene.path.string());
+    owned_gbuffer_ = std::make_unique<GBuffer>(camera_, analysed.rays(), photo_gbuffer.samples_per_pixel(),
+                                               analysis.options.seed, scene.path.string());
     gbuffer_ = owned_gbuffer_.get();
-    layers_ = resampled_layers(scene, photo_gbuffer, analysis, environment, camera_, *gbuffer_);
+    layers_ = resampled_layers(scene, photo_gbuffer, analysis, analysed.environment(), camera_, *gbuffer_);
   }
   surfaces_ = PixelSurfaces::central_samples(*gbuffer_);
 }

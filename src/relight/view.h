@@ -14,11 +14,11 @@ namespace relight {
 class RelightView {
  public:
   // width/height 0: the photo's size, where the view is exactly the
-  // analysis's (photo_gbuffer and its layers). Other sizes look each surface
+  // analysis's (its G-buffer and layers). Other sizes look each surface
   // point's albedo up in the photo (as bounce light does) and the background
-  // in the photo or, outside it, in the environment.
-  RelightView(const Scene& scene, const RayScene& rays, const GBuffer& photo_gbuffer, const Analysis& analysis,
-              const Environment& environment, int width = 0, int height = 0);
+  // in the photo or, outside it, in the environment. Holds a reference to
+  // the analysed scene's G-buffer at the photo's size.
+  explicit RelightView(const AnalysedScene& analysed, int width = 0, int height = 0);
 
   int width() const { return camera_.width(); }
   int height() const { return camera_.height(); }

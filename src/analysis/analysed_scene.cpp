@@ -1,0 +1,32 @@
+#include "analysis/analysed_scene.h"
+
+#include "analysis/analysis_folder.h"
+#include "analysis/strategy.h"
+
+namespace relight {
+
+AnalysedScene::AnalysedScene(Scene scene, const AnalysisOptions& gbuffer_options)
+    : scene_(std::move(scene)),
+      rays_(std::make_unique<RayScene>(scene_.mesh)),
+      gbuffer_(std::make_unique<GBuffer>(scene_gbuffer(scene_, *rays_, gbuffer_options))) {}
+
+void AnalysedScene::set_analysis(Analysis analysis) {
+  analysis_ = std::move(analysis);
+  environment_ = strategy_environment(scene_, *rays_, analysis_.options.strategy);
+}
+
+std::unique_ptr<AnalysedScene> AnalysedScene::from_folder(Scene&& scene, const std::filesystem::path& folder) {
+  Analysis analysis = load_analysis(folder, scene);
+  std::unique_ptr<AnalysedScene> s(new AnalysedScene(std::move(scene), analysis.options));
+  s->set_analysis(std::move(analysis));
+  return s;
+}
+
+std::unique_ptr<AnalysedScene> AnalysedScene::analyse(Scene&& scene, const AnalysisOptions& options, Progress& progress,
+                                                      const AlbedoObserver& on_albedo) {
+  std::unique_ptr<AnalysedScene> s(new AnalysedScene(std::move(scene), options));
+  s->set_analysis(analyze(s->scene_, *s->rays_, *s->gbuffer_, options, progress, on_albedo));
+  return s;
+}
+
+}  // namespace relight
