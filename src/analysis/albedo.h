@@ -1,7 +1,7 @@
 // Albedo = photo / illumination (thesis 2.4.2), per pixel, with the pixels
 // where the illumination is too small to divide by (deep shadow, grazing
-// light) or the geometry covers too little of the pixel filled from reliable
-// neighbours on the same surface.
+// light), the geometry covers too little of the pixel, or the photo clipped
+// filled from reliable neighbours on the same surface.
 #pragma once
 
 #include "core/image.h"
@@ -11,12 +11,16 @@
 namespace relight {
 
 struct AlbedoImages {
-  Image albedo;           // per pixel, the surface's own albedo (not coverage-weighted)
-  Image albedo_coverage;  // albedo x coverage: 0 on the background, like albedo_gt.exr
+  Image albedo;                      // per pixel, the surface's own albedo (not coverage-weighted)
+  Image albedo_coverage;             // albedo x coverage: 0 on the background, like albedo_gt.exr
   Vec3 mean = Vec3::Constant(0.5f);  // mean over reliable pixels; the default for unseen surfaces
-  size_t filled = 0;      // pixels filled from neighbours or the mean
+  size_t filled = 0;                 // pixels filled from neighbours or the mean
 };
 
-AlbedoImages recover_albedo(const Image& photo, const IlluminationImages& illumination, const GBuffer& gbuffer);
+// `clipped` (empty, or 1 per pixel of the photo) marks the pixels of an LDR
+// photo that clipped: like those in deep shadow, they are filled from their
+// surface (Scene::photo_clipped).
+AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clipped,
+                            const IlluminationImages& illumination, const GBuffer& gbuffer);
 
 }  // namespace relight

@@ -46,7 +46,9 @@ constexpr size_t kMinEdgePairs = 200;
 // share of the lights in the illumination differs: across a shadow edge.
 // (Pairs across a bend — the facets of a column — would also test the shading
 // model; a cast shadow on a plane tests only the light.)
-std::vector<PixelPair> shadow_edge_pairs(const GBuffer& g, const std::vector<Basis>& bases, size_t background) {
+// Pixels the photo clipped (Scene::photo_clipped) take part in no pair.
+std::vector<PixelPair> shadow_edge_pairs(const GBuffer& g, const std::vector<Basis>& bases, size_t background,
+                                         const std::vector<uint8_t>& clipped) {
   const int w = g.width(), h = g.height();
   std::vector<float> light_share(size_t(w) * h, 0.0f);
   for (size_t i = 0; i < light_share.size(); ++i) {
@@ -69,6 +71,7 @@ std::vector<PixelPair> shadow_edge_pairs(const GBuffer& g, const std::vector<Bas
         if (nx >= w || ny >= h || g.coverage(nx, ny) < 1.0f || !g.same_surface(x, y, nx, ny)) continue;
         if (g.central(x, y).surface.normal.dot(g.central(nx, ny).surface.normal) < 0.999f) continue;
         const size_t p = size_t(y) * w + x, q = size_t(ny) * w + nx;
+        if (clipped.size() == light_share.size() && (clipped[p] || clipped[q])) continue;
         if (std::abs(light_share[p] - light_share[q]) > kMinShareJump) pairs.push_back({p, q});
       }
     }
@@ -179,7 +182,7 @@ class LightingFit {
     sky.environment = Environment::constant(Vec3::Ones());
     bases_[background_].image = render(sky, bounce);
 
-    const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer_, bases_, background_);
+    const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer_, bases_, background_, scene_.photo_clipped);
     result.edge_pairs = pairs.size();
     if (pairs.size() >= kMinEdgePairs) {
       for (int c = 0; c < 3; ++c) solve_channel(scene_.photo, bases_, pairs, c);
@@ -193,8 +196,9 @@ class LightingFit {
     spdlog::info("fit round {}: {} shadow-edge pixel pairs, background {:.4f} {:.4f} {:.4f}", number, pairs.size(),
                  bg.x(), bg.y(), bg.z());
 
-    const AlbedoImages albedo = recover_albedo(
-        scene_.photo, IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
+    const AlbedoImages albedo =
+        recover_albedo(scene_.photo, scene_.photo_clipped,
+                       IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
     bounce_albedo_ = albedo.albedo;
     unseen_ = albedo.mean;
   }

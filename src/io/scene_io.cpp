@@ -252,7 +252,7 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   }
 
   check_mesh_references_inside(path.parent_path(), scene.geometry_path);
-  scene.photo = read_image(scene.photo_path);
+  scene.photo = read_image(scene.photo_path, &scene.photo_clipped);
   scene.camera = Camera(camera, scene.photo.width, scene.photo.height);
   scene.mesh = load_mesh(scene.geometry_path, progress);
   for (const auto& [spec, ptr] : probe_specs) scene.probes.push_back(parse_probe(r, *spec, ptr, path));

@@ -3,6 +3,7 @@
 // background and the probes.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -17,6 +18,9 @@ namespace relight {
 struct Scene {
   std::filesystem::path path;  // the scene.json it came from
   Image photo;
+  // 1 where an 8/16-bit photo's pixel has a channel at the top code value:
+  // unreliable, never divided into albedo. Empty for an HDR photo.
+  std::vector<uint8_t> photo_clipped;
   std::filesystem::path photo_path, geometry_path;
   TriangleMesh mesh;
   Camera camera;
