@@ -1,5 +1,6 @@
 #include "io/scene_io.h"
 
+#include <cmath>
 #include <optional>
 
 #include <spdlog/spdlog.h>
@@ -147,7 +148,8 @@ CameraSpec parse_camera(const JsonReader& r, const json& v, GeometryContents& ge
     // Beyond the image is allowed (strongly shifted lenses), within reason.
     c.principal_point = Vec2(r.number((*pp)[0], pp_ptr + "/0", -10.0f, 10.0f), r.number((*pp)[1], pp_ptr + "/1", -10.0f, 10.0f));
   }
-  r.warn_unknown_keys(v, ptr, {"position", "look_at", "up", "vfov_deg", "principal_point", "from_geometry"});
+  if (auto* aspect = r.optional(v, "aspect")) c.aspect = r.number(*aspect, ptr + "/aspect", 1e-3f, 1e3f);
+  r.warn_unknown_keys(v, ptr, {"position", "look_at", "up", "vfov_deg", "principal_point", "from_geometry", "aspect"});
   return c;
 }
 
@@ -210,6 +212,20 @@ json light_to_json(const Light& l) {
   return j;
 }
 
+// A photo cropped (say to 16:9) after the camera was matched on the whole
+// frame (4:3) would be read with the wrong field of view across its width.
+// Within 1 %: a pixel's rounding when the photo was resized.
+void check_photo_aspect(const fs::path& photo_path, const Image& photo, const CameraSpec& camera) {
+  if (camera.aspect <= 0.0f) return;
+  const float photo_aspect = float(photo.width) / float(photo.height);
+  if (std::abs(photo_aspect / camera.aspect - 1.0f) <= 0.01f) return;
+  throw InputError(photo_path.string(), "",
+                   fmt::format("the photo's aspect ratio is {:.4f} ({}x{}) but the camera was matched on an image of "
+                               "aspect ratio {:.4f} (scene.json /camera): use the photo as the camera was matched on "
+                               "(uncropped), or match the camera again",
+                               photo_aspect, photo.width, photo.height, camera.aspect));
+}
+
 }  // namespace
 
 nlohmann::json camera_to_json(const CameraSpec& c) {
@@ -217,6 +233,7 @@ nlohmann::json camera_to_json(const CameraSpec& c) {
   json j = {{"position", v3(c.position)}, {"look_at", v3(c.look_at)}, {"up", v3(c.up)}, {"vfov_deg", c.vfov_deg}};
   if (c.principal_point != Vec2(0.5f, 0.5f))
     j["principal_point"] = json::array({c.principal_point.x(), c.principal_point.y()});
+  if (c.aspect > 0.0f) j["aspect"] = c.aspect;
   return j;
 }
 
@@ -253,6 +270,7 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
 
   check_mesh_references_inside(path.parent_path(), scene.geometry_path);
   scene.photo = read_image(scene.photo_path, &scene.photo_clipped);
+  check_photo_aspect(scene.photo_path, scene.photo, camera);
   scene.camera = Camera(camera, scene.photo.width, scene.photo.height);
   scene.mesh = load_mesh(scene.geometry_path, progress);
   for (const auto& [spec, ptr] : probe_specs) scene.probes.push_back(parse_probe(r, *spec, ptr, path));
