@@ -2,6 +2,7 @@
 // made from) and the mirror ball found in a picture (against the circle and
 // the environment it was drawn with).
 #include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include "analysis/analyze.h"
 #include "analysis/strategy.h"
 #include "core/error.h"
+#include "io/response_curve.h"
 #include "io/scene_io.h"
 #include "photo/hdr_merge.h"
 #include "photo/mirror_ball.h"
@@ -191,6 +193,7 @@ TEST(MirrorBall, APictureWithoutABallIsAnInputError) {
 
 using test::run_cli;
 using test::SceneFolder;
+using test::write_text;
 
 // The lines of stderr that are errors.
 std::vector<std::string> error_lines(const std::string& err) {
@@ -324,7 +327,6 @@ TEST(LdrPhoto, ClippedPixelsTakeTheirSurfacesAlbedo) {
   // Where a pixel clipped, its albedo against the truth (scaled: the
   // exposure is unknown, the unclipped pixels' median ratio fixes it).
 
-
   const Image recovered = analyze(scene, rays, gbuffer, options, Progress::silent()).albedo.albedo;
   std::vector<float> ratios;
   std::vector<std::pair<Vec3, Vec3>> clipped;  // recovered, true
@@ -382,6 +384,67 @@ TEST(LdrPhoto, OnePercentClippedCostsUnder2dB) {
   const double ldr = scaled_psnr(analyze(scene, rays, gbuffer, options, Progress::silent()).albedo.albedo_coverage);
   std::printf("[ figures  ] outdoor albedo after one scale: HDR %.2f dB, 8-bit PNG 1 %% clipped %.2f dB\n", hdr, ldr);
   EXPECT_GT(ldr, hdr - 2.0);
+}
+
+// `radiance` (at most 1) encoded by the tone curve encoded = linear^(1/2.2),
+// rounded to 8 bits and written as a PNG.
+void write_gamma_png(const std::filesystem::path& path, const Image& radiance) {
+  std::vector<uint8_t> codes(radiance.size() * 3);
+  for (size_t p = 0; p < radiance.size(); ++p)
+    for (int c = 0; c < 3; ++c)
+      codes[p * 3 + c] =
+          uint8_t(std::lround(std::pow(std::clamp(radiance.pixels[p][c], 0.0f, 1.0f), 1.0f / 2.2f) * 255.0f));
+  const OIIO::ImageSpec spec(radiance.width, radiance.height, 3, OIIO::TypeDesc::UINT8);
+  auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out && out->open(path.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, codes.data()) &&
+              out->close());
+}
+
+// That curve as docs/formats.md's response file: 33 `encoded linear` rows.
+std::string gamma_curve_rows() {
+  std::string rows = "# encoded linear (gamma 2.2)\n";
+  for (int i = 0; i <= 32; ++i) rows += fmt::format("{} {}\n", i / 32.0, std::pow(i / 32.0, 2.2));
+  return rows;
+}
+
+// A photo encoded by a known tone curve other than sRGB comes back linear
+// through --response (measured 56.1 dB; taken as sRGB, 33.3 dB).
+TEST(ResponseCurve, LinearisesThroughTheGivenCurve) {
+  SceneFolder f("response_curve");
+  Image radiance = reference_radiance(160, 120);
+  float peak = 0.0f;
+  for (const Vec3& p : radiance.pixels) peak = std::max(peak, p.maxCoeff());
+  for (Vec3& p : radiance.pixels) p /= peak;
+  write_gamma_png(f / "photo.png", radiance);
+  write_text(f / "gamma.txt", gamma_curve_rows());
+  const double as_srgb = psnr(tonemap_reinhard_srgb(read_image(f / "photo.png")), tonemap_reinhard_srgb(radiance));
+  set_ldr_response_file(f / "gamma.txt");
+  const double through_curve =
+      psnr(tonemap_reinhard_srgb(read_image(f / "photo.png")), tonemap_reinhard_srgb(radiance));
+  set_ldr_response_file("");
+  std::printf("[ figures  ] gamma-2.2 photo: through the curve %.2f dB, as sRGB %.2f dB\n", through_curve, as_srgb);
+  EXPECT_GT(through_curve, 50.0);
+  EXPECT_GT(through_curve, as_srgb + 10.0);
+}
+
+TEST(ResponseCurve, TheCommandLineTakesItAndRefusesABadCurve) {
+  SceneFolder f("response_curve_cli");
+  write_gamma_png(f / "photo.png", Image(8, 6, Vec3(0.3f, 0.25f, 0.2f)));
+  f.scene["photo"] = "photo.png";
+  f.write_json();
+  write_text(f / "gamma.txt", gamma_curve_rows());
+  write_text(f / "falls.txt", "0 0\n0.5 0.4\n0.7 0.3\n1 1\n");
+  const std::string scene = (f / "scene.json").string();
+  const auto good = run_cli(
+      {"analyze", scene, "-o", (f / "analysis").string(), "--spp", "1", "--response", (f / "gamma.txt").string()});
+  EXPECT_EQ(good.status, 0) << good.err;
+  EXPECT_NE(good.err.find("linearised through the response curve"), std::string::npos) << good.err;
+  const auto bad = run_cli(
+      {"--response", (f / "falls.txt").string(), "analyze", scene, "-o", (f / "analysis2").string(), "--spp", "1"});
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("falls.txt: line 3"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("never fall"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(f / "analysis2"));
 }
 
 TEST(ProbeFromPhotoCommand, WritesTheCroppedBall) {
