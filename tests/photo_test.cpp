@@ -194,6 +194,7 @@ TEST(MirrorBall, APictureWithoutABallIsAnInputError) {
 using test::run_cli;
 using test::SceneFolder;
 using test::write_text;
+using json = nlohmann::json;
 
 // The lines of stderr that are errors.
 std::vector<std::string> error_lines(const std::string& err) {
@@ -445,6 +446,84 @@ TEST(ResponseCurve, TheCommandLineTakesItAndRefusesABadCurve) {
   EXPECT_NE(bad.err.find("falls.txt: line 3"), std::string::npos) << bad.err;
   EXPECT_NE(bad.err.find("never fall"), std::string::npos) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(f / "analysis2"));
+}
+
+// A probe inside the closed cube, where the geometry hides the sun: the bright
+// spot its image shows in the sun's direction (a reflection, a lamp in the
+// room) is not the sun, and `fit` must not set the sun to it.
+TEST(FitWithProbe, ALightTheProbeCannotSeeIsNotMeasuredFromIt) {
+  SceneFolder f("probe_hidden_from_sun");
+  const Vec3 travel = Vec3(0.3f, 0.2f, -1.0f).normalized();
+  f.scene["lights"] = json::array({{{"name", "sun"},
+                                    {"type", "directional"},
+                                    {"direction", {travel.x(), travel.y(), travel.z()}},
+                                    {"irradiance", 4.0}}});
+  Image probe(64, 32, Vec3::Constant(0.05f));
+  const Vec2 uv = probe_direction_to_uv(ProbeMapping::equirect, kFrame, -travel);
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      probe.at(std::clamp(int(uv.x() * 64) + dx, 0, 63), std::clamp(int(uv.y() * 32) + dy, 0, 31)) =
+          Vec3::Constant(20.0f);
+  write_exr(f / "probe.exr", probe);
+  f.scene["probes"] = json::array({{{"image", "probe.exr"},
+                                    {"mapping", "equirect"},
+                                    {"position", {0, 0, 0.5}},
+                                    {"forward", {0, 1, 0}},
+                                    {"up", {0, 0, 1}}}});
+  f.write_json();
+  const auto r = run_cli({"fit", (f / "scene.json").string(), "-o", (f / "fitted.json").string(), "--spp", "2"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("the geometry hides light \"sun\" from this probe's position"), std::string::npos) << r.err;
+  const json fitted = json::parse(test::read_text(f / "fitted.json"));
+  // Not measured from the probe: the fit keeps it (too few shadow edges in 8 x 6 pixels to fit it from).
+  EXPECT_NEAR(fitted["lights"][0]["irradiance"].get<double>(), 4.0, 1e-4) << r.err;
+}
+
+// No probe: `fit` says that power and albedo trade off; with the lamp given
+// far too weak for the photo's brightness (2 W for 200) it says that the
+// albedo came out above 1.
+TEST(FitWithoutProbe, WarnsThatPowerAndAlbedoTradeOffAndOfAlbedoAboveOne) {
+  SceneFolder f("fit_albedo_above_one");
+  f.scene["lights"][0]["power"] = 2.0;
+  f.write_json();
+  const auto r = run_cli({"fit", (f / "scene.json").string(), "-o", (f / "fitted.json").string(), "--spp", "2"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("the overall brightness of the lights and the albedo trade off"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the albedo is above 1 on"), std::string::npos) << r.err;
+  // With the lamp as it was, the albedo stays below 1: only the first warning.
+  f.scene["lights"][0]["power"] = 200.0;
+  f.write_json();
+  const auto fine = run_cli({"fit", (f / "scene.json").string(), "-o", (f / "fitted2.json").string(), "--spp", "2"});
+  ASSERT_EQ(fine.status, 0) << fine.err;
+  EXPECT_EQ(fine.err.find("the albedo is above 1 on"), std::string::npos) << fine.err;
+}
+
+// A grey card (here: the whole 8 x 6 photo, of albedo [0.5, 0.4, 0.3]) fixes
+// the exposure and white balance: `fit` scales the lights so that the
+// analysis then recovers that albedo there.
+TEST(FitWithReference, TheReferenceAlbedoComesBack) {
+  SceneFolder f("fit_reference");
+  f.scene["reference"] = {{"polygon", {{0, 0}, {8, 0}, {8, 6}, {0, 6}}}, {"albedo", {0.5, 0.4, 0.3}}};
+  f.write_json();
+  const auto r = run_cli({"fit", (f / "scene.json").string(), "-o", (f / "fitted.json").string(), "--spp", "4"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("trade off"), std::string::npos) << r.err;
+  const auto a = run_cli({"analyze", (f / "fitted.json").string(), "-o", (f / "analysis").string(), "--spp", "16"});
+  ASSERT_EQ(a.status, 0) << a.err;
+  const Image albedo = read_image(f / "analysis" / "albedo_surface.exr");
+  int w, h;
+  const std::vector<float> mask = read_scalar_image(f / "analysis" / "mask.exr", w, h);
+  Vec3 sum = Vec3::Zero();
+  int n = 0;
+  for (size_t p = 0; p < albedo.size(); ++p)
+    if (mask[p] >= 0.999f) sum += albedo.pixels[p], ++n;
+  ASSERT_GT(n, 10);
+  const Vec3 mean = sum / float(n);
+  std::printf("[ figures  ] albedo on the reference after fit: %.3f %.3f %.3f (given 0.5 0.4 0.3)\n", mean.x(),
+              mean.y(), mean.z());
+  EXPECT_NEAR(mean.x(), 0.5f, 0.05f);
+  EXPECT_NEAR(mean.y(), 0.4f, 0.04f);
+  EXPECT_NEAR(mean.z(), 0.3f, 0.03f);
 }
 
 TEST(ProbeFromPhotoCommand, WritesTheCroppedBall) {

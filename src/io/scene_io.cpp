@@ -212,6 +212,25 @@ json light_to_json(const Light& l) {
   return j;
 }
 
+AlbedoReference parse_reference(const JsonReader& r, const json& v) {
+  r.expect_object(v, "/reference");
+  AlbedoReference ref;
+  const json& polygon = r.required(v, "/reference", "polygon");
+  if (!polygon.is_array() || polygon.size() < 3)
+    r.fail("/reference/polygon", "expected three or more [x, y] photo pixel positions");
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const std::string ptr = json_child("/reference/polygon", i);
+    if (!polygon[i].is_array() || polygon[i].size() != 2) r.fail(ptr, "expected [x, y] in photo pixels");
+    ref.polygon.emplace_back(r.number(polygon[i][0], ptr + "/0"), r.number(polygon[i][1], ptr + "/1"));
+  }
+  const json& albedo = r.required(v, "/reference", "albedo");
+  const std::string ptr = "/reference/albedo";
+  ref.albedo = albedo.is_number() ? Vec3::Constant(r.number(albedo, ptr, 0.0f, 1.0f)) : r.color(albedo, ptr);
+  if (ref.albedo.minCoeff() <= 0.0f || ref.albedo.maxCoeff() > 1.0f) r.fail(ptr, "expected an albedo in (0, 1]");
+  r.warn_unknown_keys(v, "/reference", {"polygon", "albedo"});
+  return ref;
+}
+
 // A photo cropped (say to 16:9) after the camera was matched on the whole
 // frame (4:3) would be read with the wrong field of view across its width.
 // Within 1 %: a pixel's rounding when the photo was resized.
@@ -241,7 +260,7 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   const JsonReader r(path.string());
   const json root = JsonReader::parse_file(path);
   expect_format(r, root, "relight-scene/1");
-  r.warn_unknown_keys(root, "", {"format", "photo", "geometry", "camera", "lights", "background", "probes"});
+  r.warn_unknown_keys(root, "", {"format", "photo", "geometry", "camera", "lights", "background", "probes", "reference"});
 
   Scene scene;
   scene.path = path;
@@ -262,6 +281,7 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
     scene.lights = parse_lights(r, root);
   }
   if (auto* bg = r.optional(root, "background")) scene.background = r.color(*bg, "/background");
+  if (auto* reference = r.optional(root, "reference")) scene.reference = parse_reference(r, *reference);
   std::vector<std::pair<const json*, std::string>> probe_specs;
   if (auto* probes = r.optional(root, "probes")) {
     if (!probes->is_array()) r.fail("/probes", "expected an array of probes");
@@ -303,6 +323,11 @@ std::string scene_to_json(const Scene& scene, const fs::path& folder) {
   j["lights"] = json::array();
   for (const auto& l : scene.lights) j["lights"].push_back(light_to_json(l));
   j["background"] = v3(scene.background);
+  if (scene.reference) {
+    json polygon = json::array();
+    for (const Vec2& p : scene.reference->polygon) polygon.push_back({p.x(), p.y()});
+    j["reference"] = {{"polygon", polygon}, {"albedo", v3(scene.reference->albedo)}};
+  }
   if (!scene.probes.empty()) {
     j["probes"] = json::array();
     for (const auto& p : scene.probes)

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "core/image.h"
@@ -14,6 +15,13 @@
 #include "scene/triangle_mesh.h"
 
 namespace relight {
+
+// A surface of known albedo the photo shows (a grey card): the polygon
+// (photo pixels, x right and y down from the top-left corner) and its albedo.
+struct AlbedoReference {
+  std::vector<Vec2> polygon;
+  Vec3 albedo = Vec3::Constant(0.18f);
+};
 
 struct Scene {
   std::filesystem::path path;  // the scene.json it came from
@@ -27,6 +35,7 @@ struct Scene {
   std::vector<Light> lights;
   Vec3 background = Vec3::Zero();
   std::vector<Probe> probes;
+  std::optional<AlbedoReference> reference;  // scene.json's optional `reference`
 };
 
 // A lighting design: rig.json.
