@@ -54,7 +54,7 @@ float max_error(const Vec3& a, const Vec3& b) { return (a - b).cwiseAbs().maxCoe
 TEST(RecoverAlbedo, UndoesTheMixOfSurfaceAndBackground) {
   Synthetic s;
   s.make_photo();
-  const AlbedoImages a = recover_albedo(s.photo, s.illumination, s.gbuffer);
+  const AlbedoImages a = recover_albedo(s.photo, {}, s.illumination, s.gbuffer);
   int exact = 0, partial = 0, background = 0;
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
@@ -89,7 +89,7 @@ TEST(RecoverAlbedo, FillsDeepShadowFromTheSameSurfaceNotByDividing) {
   // Noise in the photo there would blow up by 10^4 if divided.
   for (int y = 10; y < 20; ++y)
     for (int x = 25; x < 35; ++x) s.photo.at(x, y) += Vec3::Constant(0.01f);
-  const AlbedoImages a = recover_albedo(s.photo, s.illumination, s.gbuffer);
+  const AlbedoImages a = recover_albedo(s.photo, {}, s.illumination, s.gbuffer);
   EXPECT_GE(a.filled, size_t(100));
   for (int y = 10; y < 20; ++y)
     for (int x = 25; x < 35; ++x)
@@ -103,7 +103,7 @@ TEST(RecoverAlbedo, ClampsWhatNoAlbedoCouldReflect) {
   Synthetic s;
   s.make_photo();
   s.photo.at(40, 18) *= 1000.0f;  // a highlight far brighter than the light allows
-  const AlbedoImages a = recover_albedo(s.photo, s.illumination, s.gbuffer);
+  const AlbedoImages a = recover_albedo(s.photo, {}, s.illumination, s.gbuffer);
   EXPECT_LE(a.albedo.at(40, 18).maxCoeff(), 10.0f);
   EXPECT_GT(a.albedo.at(40, 18).minCoeff(), 9.0f);
 }

@@ -195,6 +195,18 @@ const std::vector<Row>& catalogue() {
        "scene.json", "/camera/up: must not be parallel"},
       {"CameraUpZero", [](SceneFolder& f) { f.scene["camera"]["up"] = {0, 0, 0}; }, Command::load, "scene.json",
        "/camera/up: expected a non-zero direction"},
+      // The 8 x 6 (4:3) photo cropped to 16:9 after the camera was matched, or the other way round.
+      {"PhotoOfAnotherAspectThanTheCamera", [](SceneFolder& f) { f.scene["camera"]["aspect"] = 16.0 / 9.0; },
+       Command::load, "photo.exr",
+       "the photo's aspect ratio is 1.3333 (8x6) but the camera was matched on an image of aspect ratio 1.7778"},
+      {"ReferencePolygonOfTwoPoints",
+       [](SceneFolder& f) { f.scene["reference"] = {{"polygon", {{0, 0}, {8, 0}}}, {"albedo", 0.18}}; },
+       Command::load, "scene.json", "/reference/polygon: expected three or more"},
+      {"ReferenceAlbedoAboveOne",
+       [](SceneFolder& f) { f.scene["reference"] = {{"polygon", {{0, 0}, {8, 0}, {8, 6}}}, {"albedo", 1.5}}; },
+       Command::load, "scene.json", "/reference/albedo"},
+      {"CameraAspectNegative", [](SceneFolder& f) { f.scene["camera"]["aspect"] = -1.5; }, Command::load,
+       "scene.json", "/camera/aspect"},
       {"BackgroundIsAWord", [](SceneFolder& f) { f.scene["background"] = "blue"; }, Command::load, "scene.json",
        "/background: expected a colour"},
       // lights

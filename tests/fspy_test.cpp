@@ -151,6 +151,25 @@ TEST(Fspy, CommandWritesTheCameraBlock) {
   expect_images_as_fspy(load_scene(folder / "scene.json").camera, truth);
 }
 
+// The camera block records the aspect ratio of fSpy's image: a photo cropped
+// since (here to 16:9, 8 x 4.5 -> 16 x 9) is refused, naming the photo.
+TEST(Fspy, APhotoCroppedAfterTheMatchIsRefused) {
+  const FspyTruth truth;  // 800 x 600
+  SceneFolder folder("fspy_cropped");
+  write_text(folder / "camera_export.json", truth.parameters().dump());
+  ASSERT_EQ(run_cli({"camera-from-fspy", (folder / "camera_export.json").string(), "-o", (folder / "camera.json").string()}).status, 0);
+  const json camera = json::parse(read_text(folder / "camera.json"));
+  EXPECT_NEAR(camera["aspect"].get<double>(), 4.0 / 3.0, 1e-6);
+  folder.scene["camera"] = camera;
+  folder.write_json();
+  write_exr(folder / "photo.exr", Image(16, 9, Vec3::Constant(0.3f)));
+  const CliResult r = run_cli({"analyze", (folder / "scene.json").string(), "-o", (folder / "analysis").string()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("photo.exr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("aspect ratio is 1.7778 (16x9)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("1.3333"), std::string::npos) << r.err;
+}
+
 TEST(Fspy, BadFilesAreOneLineErrorsNamingTheFile) {
   const FspyTruth truth;
   SceneFolder folder("fspy_bad");

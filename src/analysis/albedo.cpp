@@ -7,15 +7,17 @@ namespace relight {
 
 namespace {
 
-constexpr float kMinCoverage = 0.5f;          // below: too little geometry in the pixel to divide
-constexpr float kMinRelativeLight = 0.01f;    // below this share of the median illumination: unreliable
-constexpr float kMaxAlbedo = 10.0f;           // guards against division blow-ups
+constexpr float kMinCoverage = 0.5f;        // below: too little geometry in the pixel to divide
+constexpr float kMinRelativeLight = 0.01f;  // below this share of the median illumination: unreliable
+constexpr float kMaxAlbedo = 10.0f;         // guards against division blow-ups
 constexpr int kFillPasses = 256;
 
 }  // namespace
 
-AlbedoImages recover_albedo(const Image& photo, const IlluminationImages& illum, const GBuffer& g) {
+AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clipped, const IlluminationImages& illum,
+                            const GBuffer& g) {
   const int w = photo.width, h = photo.height;
+  const bool any_clipped = clipped.size() == photo.size();
   AlbedoImages out;
   out.albedo = Image(w, h);
   out.albedo_coverage = Image(w, h);
@@ -29,6 +31,7 @@ AlbedoImages recover_albedo(const Image& photo, const IlluminationImages& illum,
 
   // known: 1 reliable, 0 to fill, -1 background (nothing to fill)
   std::vector<int8_t> known(size_t(w) * h, -1);
+  std::vector<std::pair<size_t, Vec3>> at_least;  // the clipped pixels' lower bounds
   Vec3 sum = Vec3::Zero();
   size_t count = 0;
   for (int y = 0; y < h; ++y)
@@ -43,6 +46,12 @@ AlbedoImages recover_albedo(const Image& photo, const IlluminationImages& illum,
       const Vec3 surface_part = (photo.at(x, y) - (1.0f - c) * illum.background.at(x, y)).cwiseMax(0.0f);
       const Vec3 a = surface_part.cwiseQuotient(c * L).cwiseMin(kMaxAlbedo);
       out.albedo.at(x, y) = a;
+      // A clipped pixel's radiance is only known to be at least its value:
+      // its albedo is filled, and then raised to that lower bound.
+      if (any_clipped && clipped[i]) {
+        at_least.emplace_back(i, a);
+        continue;
+      }
       known[i] = 1;
       sum += a;
       ++count;
@@ -80,6 +89,7 @@ AlbedoImages recover_albedo(const Image& photo, const IlluminationImages& illum,
       out.albedo.pixels[i] = out.mean;
       ++out.filled;
     }
+  for (const auto& [i, bound] : at_least) out.albedo.pixels[i] = out.albedo.pixels[i].cwiseMax(bound);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) out.albedo_coverage.at(x, y) = out.albedo.at(x, y) * g.coverage(x, y);
   return out;

@@ -1,7 +1,7 @@
 // Albedo = photo / illumination (thesis 2.4.2), per pixel, with the pixels
 // where the illumination is too small to divide by (deep shadow, grazing
-// light) or the geometry covers too little of the pixel filled from reliable
-// neighbours on the same surface.
+// light), the geometry covers too little of the pixel, or the photo clipped
+// filled from reliable neighbours on the same surface.
 #pragma once
 
 #include "core/image.h"
@@ -27,6 +27,10 @@ struct AlbedoImages {
   std::vector<TriangleAlbedo> unseen_triangles;
 };
 
-AlbedoImages recover_albedo(const Image& photo, const IlluminationImages& illumination, const GBuffer& gbuffer);
+// `clipped` (empty, or 1 per pixel of the photo) marks the pixels of an LDR
+// photo that clipped: like those in deep shadow, they are filled from their
+// surface (Scene::photo_clipped).
+AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clipped,
+                            const IlluminationImages& illumination, const GBuffer& gbuffer);
 
 }  // namespace relight

@@ -10,6 +10,7 @@
 #include "io/image_io.h"
 #include "io/input_file.h"
 #include "io/json_reader.h"
+#include "io/response_curve.h"
 
 namespace relight {
 
@@ -102,6 +103,7 @@ std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& optio
   hash.add_file(scene.photo_path);
   hash.add_file(scene.geometry_path);
   for (const Probe& probe : scene.probes) hash.add_file(probe.path);
+  if (const ResponseCurve* response = ldr_response()) hash.add_file(response->path());  // how an LDR photo was read
   hash.add_text(fmt::format("{} {} {} {} {} {} {}", to_string(options.strategy), options.paths_per_pixel,
                             options.gbuffer_samples, options.seed, options.max_bounces, options.interreflection,
                             options.denoise));

@@ -148,7 +148,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     throw InputError(scene.path.string(), "/camera",
                      "no light reaches any surface the camera sees: is the camera inside the geometry, or every "
                      "light shut in?");
-  result.albedo = recover_albedo(scene.photo, result.illumination, gbuffer);
+  result.albedo = recover_albedo(scene.photo, scene.photo_clipped, result.illumination, gbuffer);
   result.iterations = 1;
   if (on_albedo) on_albedo(result.iterations, result.albedo);
 
@@ -168,7 +168,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   for (int it = 0; options.interreflection && it < options.max_iterations; ++it) {
     const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, bounce, result.albedo.mean, result.albedo.unseen_triangles);
     IlluminationImages illum = render(bounce_albedo, "interreflection " + std::to_string(it + 1));
-    AlbedoImages next = recover_albedo(scene.photo, illum, gbuffer);
+    AlbedoImages next = recover_albedo(scene.photo, scene.photo_clipped, illum, gbuffer);
     next.unseen_triangles = result.albedo.unseen_triangles;
     const float change = mean_abs_change(next.albedo, bounce, result.coverage);
     for (size_t i = 0; i < bounce.size(); ++i) bounce.pixels[i] = 0.5f * (bounce.pixels[i] + next.albedo.pixels[i]);
@@ -192,7 +192,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     // division, from the albedo the photo's radiance gave.
     IlluminationImages back = render_with(final_albedo, nullptr, illumination_options(options), "rendered back");
     result.residual = residual_of(scene.photo, result.albedo.albedo, back.surface, result.coverage);
-    AlbedoImages closing = recover_albedo(scene.photo, back, gbuffer);
+    AlbedoImages closing = recover_albedo(scene.photo, scene.photo_clipped, back, gbuffer);
     closing.unseen_triangles = std::move(result.albedo.unseen_triangles);
     result.illumination = std::move(back);
     result.albedo = std::move(closing);

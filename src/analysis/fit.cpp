@@ -42,11 +42,28 @@ struct PixelPair {
 // at 1.5 to 3 times its value. A round with fewer than this solves nothing.
 constexpr size_t kMinEdgePairs = 200;
 
+// Even-odd rule: whether p lies inside the polygon.
+bool inside(const std::vector<Vec2>& polygon, const Vec2& p) {
+  bool in = false;
+  for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Vec2 &a = polygon[i], &b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
+      in = !in;
+  }
+  return in;
+}
+
+// The share of the surfaces in view whose albedo may exceed 1 (noise,
+// highlights) before the fit warns that the lighting is too weak.
+constexpr double kMaxShareAboveOne = 0.01;
+
 // Nearby pixels (a few apart) on one plane, fully covered, where the
 // share of the lights in the illumination differs: across a shadow edge.
 // (Pairs across a bend — the facets of a column — would also test the shading
 // model; a cast shadow on a plane tests only the light.)
-std::vector<PixelPair> shadow_edge_pairs(const GBuffer& g, const std::vector<Basis>& bases, size_t background) {
+// Pixels the photo clipped (Scene::photo_clipped) take part in no pair.
+std::vector<PixelPair> shadow_edge_pairs(const GBuffer& g, const std::vector<Basis>& bases, size_t background,
+                                         const std::vector<uint8_t>& clipped) {
   const int w = g.width(), h = g.height();
   std::vector<float> light_share(size_t(w) * h, 0.0f);
   for (size_t i = 0; i < light_share.size(); ++i) {
@@ -69,6 +86,7 @@ std::vector<PixelPair> shadow_edge_pairs(const GBuffer& g, const std::vector<Bas
         if (nx >= w || ny >= h || g.coverage(nx, ny) < 1.0f || !g.same_surface(x, y, nx, ny)) continue;
         if (g.central(x, y).surface.normal.dot(g.central(nx, ny).surface.normal) < 0.999f) continue;
         const size_t p = size_t(y) * w + x, q = size_t(ny) * w + nx;
+        if (clipped.size() == light_share.size() && (clipped[p] || clipped[q])) continue;
         if (std::abs(light_share[p] - light_share[q]) > kMinShareJump) pairs.push_back({p, q});
       }
     }
@@ -115,14 +133,38 @@ void solve_channel(const Image& photo, std::vector<Basis>& bases, const std::vec
   for (Eigen::Index j = 0; j < n; ++j) bases[unknown[j]].emission[c] = float(std::max(0.0, x[j]));
 }
 
+// Whether the whole of the light (its disc, rectangle or sun disc: 3 x 3
+// points over it) is in plain view from the probe's position: a probe the
+// geometry hides the light from shows a wall or a reflection where the light
+// should be, and measuring that would set the light to almost nothing.
+bool probe_sees_light(const RayScene& rays, const Probe& probe, const Light& light) {
+  const LightSampler sampler(light);
+  const Vec3 towards = light.type == LightType::directional ? Vec3(-light.direction.normalized())
+                                                            : Vec3((light.position - probe.position).normalized());
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const LightSample s = sampler.sample(probe.position, towards, Vec2((i + 0.5f) / 3, (j + 0.5f) / 3));
+      const float tmax = std::isfinite(s.distance) ? s.distance * (1.0f - 1e-4f) : s.distance;
+      if (rays.occluded(probe.position, s.direction, tmax)) return false;
+    }
+  return true;
+}
+
 // The emission of each light as the probes measure it (mean over the probes
-// that see it).
-std::optional<Vec3> emission_seen_by_probes(const std::vector<Probe>& probes, const Light& light) {
+// that see it, unoccluded).
+std::optional<Vec3> emission_seen_by_probes(const RayScene& rays, const std::vector<Probe>& probes,
+                                            const Light& light) {
   Vec3 sum = Vec3::Zero();
   int n = 0;
-  for (const Probe& probe : probes)
+  for (const Probe& probe : probes) {
+    if (!probe_sees_light(rays, probe, light)) {
+      spdlog::warn("{}: the geometry hides light \"{}\" from this probe's position: the light is not measured from it",
+                   probe.path, light.name);
+      continue;
+    }
     if (const auto seen = locate_light_in_probe(probe, light))
       if (const auto e = emission_from_probe(probe, light, *seen)) sum += *e, ++n;
+  }
   if (n == 0) return std::nullopt;
   return Vec3(sum / float(n));
 }
@@ -148,7 +190,7 @@ class LightingFit {
       Basis b;
       b.emission = light.emission();
       FittedLight report{light.name, light.emission(), light.emission(), "shadows"};
-      if (const auto seen = emission_seen_by_probes(distant_, light)) {
+      if (const auto seen = emission_seen_by_probes(rays, distant_, light)) {
         b.known = true;
         b.emission = *seen;
         report.source = "probe";
@@ -161,6 +203,11 @@ class LightingFit {
     if (!anchored && !bases_.empty()) {
       bases_.front().known = true;  // the scale anchor: see fit.h
       result.lights.front().source = "kept (scale anchor)";
+      if (!scene.reference)
+        spdlog::warn(
+            "{}: no probe measures a light, so the overall brightness of the lights and the albedo trade off "
+            "(twice the power, half the albedo); light \"{}\" keeps the power given as the scale anchor",
+            scene.path.string(), result.lights.front().name);
     }
     background_ = bases_.size();
     bases_.push_back(Basis{Image(), false, scene.background});
@@ -179,7 +226,7 @@ class LightingFit {
     sky.environment = Environment::constant(Vec3::Ones());
     bases_[background_].image = render(sky, bounce);
 
-    const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer_, bases_, background_);
+    const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer_, bases_, background_, scene_.photo_clipped);
     result.edge_pairs = pairs.size();
     if (pairs.size() >= kMinEdgePairs) {
       for (int c = 0; c < 3; ++c) solve_channel(scene_.photo, bases_, pairs, c);
@@ -193,10 +240,54 @@ class LightingFit {
     spdlog::info("fit round {}: {} shadow-edge pixel pairs, background {:.4f} {:.4f} {:.4f}", number, pairs.size(),
                  bg.x(), bg.y(), bg.z());
 
-    const AlbedoImages albedo = recover_albedo(
-        scene_.photo, IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
+    const AlbedoImages albedo =
+        recover_albedo(scene_.photo, scene_.photo_clipped,
+                       IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
     bounce_albedo_ = albedo.albedo;
     unseen_ = albedo.mean;
+  }
+
+  // The photo's exposure and white balance from the surface of known albedo
+  // (Scene::reference): every emission scaled, per channel, so that the
+  // albedo recovered on it is the one given (albedo and light trade off:
+  // photo = albedo x light).
+  void apply_reference() {
+    if (!scene_.reference) return;
+    Vec3 sum = Vec3::Zero();
+    size_t n = 0;
+    for (int y = 0; y < gbuffer_.height(); ++y)
+      for (int x = 0; x < gbuffer_.width(); ++x)
+        if (gbuffer_.coverage(x, y) >= 1.0f && inside(scene_.reference->polygon, Vec2(x + 0.5f, y + 0.5f)))
+          sum += bounce_albedo_.at(x, y), ++n;
+    if (n == 0 || sum.minCoeff() <= 0.0f) {
+      spdlog::warn(
+          "{}: /reference: the polygon covers no lit pixel of the geometry in view; the overall scale is "
+          "kept",
+          scene_.path.string());
+      return;
+    }
+    const Vec3 ratio = (sum / float(n)).cwiseQuotient(scene_.reference->albedo);
+    for (Basis& b : bases_) b.emission = b.emission.cwiseProduct(ratio);
+    for (Vec3& a : bounce_albedo_.pixels) a = a.cwiseQuotient(ratio);
+    unseen_ = unseen_.cwiseQuotient(ratio);
+    result.reference_scale = ratio;
+  }
+
+  // An albedo above 1 is no surface: the lights given are too weak (or one
+  // is missing, or a probe was forgotten) for the photo's brightness.
+  void warn_if_albedo_above_one() const {
+    size_t covered = 0, above = 0;
+    for (int y = 0; y < gbuffer_.height(); ++y)
+      for (int x = 0; x < gbuffer_.width(); ++x) {
+        if (gbuffer_.coverage(x, y) < 1.0f) continue;
+        ++covered;
+        if (bounce_albedo_.at(x, y).maxCoeff() > 1.0f) ++above;
+      }
+    if (covered == 0 || double(above) <= kMaxShareAboveOne * double(covered)) return;
+    spdlog::warn(
+        "{}: with the fitted lighting the albedo is above 1 on {:.1f} % of the surfaces in view: the lights "
+        "are too weak for the photo (a light missing, its power too low, or a probe forgotten)",
+        scene_.path.string(), 100.0 * double(above) / double(covered));
   }
 
   // Soft light (a lamp indoors) casts too few sharp shadows to tell the
@@ -280,6 +371,9 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
     fit.check_background_against_probes();
     fit.publish();
   }
+  fit.apply_reference();
+  fit.publish();
+  fit.warn_if_albedo_above_one();
   return fit.result;
 }
 

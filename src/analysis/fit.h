@@ -2,7 +2,10 @@
 // background "by trial and error"; relight fits them.
 //
 // 1. A light that a probe sees gets the emission implied by the irradiance it
-//    delivers at the probe (probe_lights.h): absolute, colour included.
+//    delivers at the probe (probe_lights.h): absolute, colour included. A
+//    probe sees it only if the geometry hides no part of it from the
+//    probe's position (a ray test; otherwise a warning, and the probe is
+//    not used for that light).
 // 2. Light transport is linear, so the illumination is a sum of one image per
 //    light (at unit emission) and one for the background. The albedo
 //    photo / illumination must not change across a shadow edge; for pixel
@@ -11,7 +14,8 @@
 //    (iteratively reweighted) least squares per colour channel gives the
 //    background and the lights no probe sees. The overall scale of light and
 //    albedo cannot be told apart from one photo: without a probe it is anchored
-//    by keeping the first light as the user gave it.
+//    by keeping the first light as the user gave it, with a warning; and an
+//    albedo above 1 on more than 1 % of the view is warned of.
 // A round with fewer than 200 such pairs solves nothing: the unknowns keep
 // the values given. Where the shadows are too soft to tell background from
 // lights (no round solved, or the fit disagrees with the probes' mean
@@ -53,6 +57,9 @@ struct FitResult {
   std::string background_source = "shadows";  // or the probe mean, or kept
   size_t edge_pairs = 0;                      // pixel pairs across shadow edges used by the last round
   std::vector<PlacedLight> placement;         // with refine_placement
+  // With a reference: the factor (per channel) every emission was scaled by
+  // so that the reference's albedo came out as given; otherwise 1.
+  Vec3 reference_scale = Vec3::Ones();
 };
 
 FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,

@@ -13,6 +13,7 @@
 #include "io/image_io.h"
 #include "io/mesh_io.h"
 #include "io/output_guard.h"
+#include "io/response_curve.h"
 #include "io/scene_folder_reads.h"
 #include "io/scene_io.h"
 
@@ -112,6 +113,10 @@ int run(std::span<const std::string> args) {
       ->envname("RELIGHT_MAX_PIXELS")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  std::string response;
+  app.add_option("--response", response,
+                 "linearise 8/16-bit photos and probes through this tone curve (a text file of `encoded linear` rows, "
+                 "docs/formats.md) instead of sRGB");
   bool repair_mesh = false;
   app.add_flag("--repair-mesh", repair_mesh,
                "drop the geometry's degenerate (zero-area) triangles with a warning instead of refusing it")
@@ -149,6 +154,7 @@ int run(std::span<const std::string> args) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   set_max_image_pixels(max_pixels);
+  set_ldr_response_file(response);
   set_repair_meshes(repair_mesh);
   set_force_outputs(force);
   set_confine_to_scene_folder(confine);

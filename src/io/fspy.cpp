@@ -31,17 +31,20 @@ uint32_t little_endian_u32(const std::string& bytes, size_t offset) {
 std::pair<json, std::string> project_camera_parameters(const std::string& name, const std::string& bytes) {
   if (bytes.size() < kHeaderSize) throw InputError(name, "", "truncated fSpy project: shorter than its 16-byte header");
   const uint32_t version = little_endian_u32(bytes, 4);
-  if (version != 1) throw InputError(name, "", "fSpy project version " + std::to_string(version) + " is not supported (expected 1)");
+  if (version != 1)
+    throw InputError(name, "", "fSpy project version " + std::to_string(version) + " is not supported (expected 1)");
   const uint64_t state_size = little_endian_u32(bytes, 8), image_size = little_endian_u32(bytes, 12);
   if (kHeaderSize + state_size + image_size > bytes.size())
-    throw InputError(name, "", "truncated fSpy project: the header announces " + std::to_string(state_size) +
-                                   " bytes of JSON and " + std::to_string(image_size) + " of image, the file holds " +
-                                   std::to_string(bytes.size() - kHeaderSize));
+    throw InputError(name, "",
+                     "truncated fSpy project: the header announces " + std::to_string(state_size) +
+                         " bytes of JSON and " + std::to_string(image_size) + " of image, the file holds " +
+                         std::to_string(bytes.size() - kHeaderSize));
   json state = JsonReader::parse_text(name, bytes.substr(kHeaderSize, state_size));
   JsonReader(name).expect_object(state, "");
   const auto it = state.find("cameraParameters");
   if (it == state.end() || it->is_null())
-    throw InputError(name, "/cameraParameters", "the fSpy project holds no camera solution (finish the calibration in fSpy)");
+    throw InputError(name, "/cameraParameters",
+                     "the fSpy project holds no camera solution (finish the calibration in fSpy)");
   return {std::move(*it), "/cameraParameters"};
 }
 
@@ -80,6 +83,7 @@ CameraSpec camera_from_parameters(const JsonReader& r, const json& p, const std:
   c.up = up;
   c.vfov_deg = vfov * 180.0f / kPi;
   c.principal_point = Vec2(0.5f + px * longer / (2.0f * width), 0.5f - py * longer / (2.0f * height));
+  c.aspect = float(width) / float(height);
   return c;
 }
 
@@ -97,8 +101,10 @@ FspyCamera read_fspy_camera(const fs::path& path) {
   if (!project && !parameters.contains("cameraTransform"))
     r.fail("/cameraTransform", "missing: this is neither an fSpy project nor the camera JSON fSpy exports");
   FspyCamera result;
-  result.image_width = int(r.number(r.required(parameters, ptr, "imageWidth"), json_child(ptr, "imageWidth"), 1.0f, 1.0e6f));
-  result.image_height = int(r.number(r.required(parameters, ptr, "imageHeight"), json_child(ptr, "imageHeight"), 1.0f, 1.0e6f));
+  result.image_width =
+      int(r.number(r.required(parameters, ptr, "imageWidth"), json_child(ptr, "imageWidth"), 1.0f, 1.0e6f));
+  result.image_height =
+      int(r.number(r.required(parameters, ptr, "imageHeight"), json_child(ptr, "imageHeight"), 1.0f, 1.0e6f));
   result.camera = camera_from_parameters(r, parameters, ptr, result.image_width, result.image_height);
   return result;
 }

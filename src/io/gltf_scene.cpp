@@ -98,6 +98,8 @@ CameraSpec parse_camera(const JsonReader& r, const json& camera, const std::stri
   c.look_at = at.position + at.forward;
   c.up = at.up;
   c.vfov_deg = yfov * 180.0f / kPi;
+  if (const json& p = camera.at("perspective"); p.contains("aspectRatio"))
+    c.aspect = r.number(p["aspectRatio"], persp + "/aspectRatio", 1e-3f, 1e3f);
   return c;
 }
 

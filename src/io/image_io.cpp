@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/input_file.h"
+#include "io/response_curve.h"
 
 namespace relight {
 
@@ -117,19 +118,35 @@ void expect_within_pixel_limit(const std::string& name, const char* what, int64_
                                  what, width, height, pixels * 1e-6, max_image_pixels() * 1e-6));
 }
 
-Image read_image(const fs::path& path) {
+Image read_image(const fs::path& path, std::vector<uint8_t>* clipped) {
   RawImage raw = read_raw(path, [](const ImageSpec& spec) { return std::pair(0, spec.nchannels >= 3 ? 3 : 1); });
   clamp_negative_noise(path, raw);
   const bool ldr = is_low_dynamic_range(raw.spec);
-  if (ldr)
-    spdlog::warn("{}: 8/16-bit image taken as sRGB-encoded and linearised; an HDR photo is better", path.string());
+  const ResponseCurve* response = ldr ? ldr_response() : nullptr;
   Image img(raw.width, raw.height);
+  if (clipped) clipped->assign(ldr ? img.size() : 0, 0);
+  size_t clipped_pixels = 0;
   for (size_t p = 0; p < img.size(); ++p) {
     const float* px = &raw.data[p * raw.channels];
     Vec3 c = raw.channels == 3 ? Vec3(px[0], px[1], px[2]) : Vec3::Constant(px[0]);
-    if (ldr) c = Vec3(srgb_decode(c.x()), srgb_decode(c.y()), srgb_decode(c.z()));
+    if (ldr) {
+      // OpenImageIO maps the top code value (255, 65535) to exactly 1.
+      if (c.maxCoeff() >= 1.0f) {
+        ++clipped_pixels;
+        if (clipped) (*clipped)[p] = 1;
+      }
+      c = response ? response->linear(c) : Vec3(srgb_decode(c.x()), srgb_decode(c.y()), srgb_decode(c.z()));
+    }
     img.pixels[p] = c;
   }
+  if (ldr)
+    spdlog::warn("{}: 8/16-bit image {}; {} of its pixels ({:.2f} %) are clipped (a channel at the top code value){}; "
+                 "an HDR photo is better",
+                 path.string(),
+                 response ? "linearised through the response curve " + response->path().string()
+                          : std::string("taken as sRGB-encoded and linearised (--response FILE for another tone curve)"),
+                 clipped_pixels, 100.0 * double(clipped_pixels) / double(img.size()),
+                 clipped && clipped_pixels ? " and are not used as measurements" : "");
   return img;
 }
 

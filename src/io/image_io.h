@@ -32,9 +32,12 @@ inline constexpr float kMaxPixelValue = 1.0e20f;
 // Reads an image as linear RGB. Throws InputError for a missing or unreadable
 // file, an empty image, one over max_image_pixels(), non-finite pixels or ones
 // beyond kMaxPixelValue, negative ones (noise within 1 % of the mean value below 0 is clamped with a
-// warning). 8/16-bit formats are taken as sRGB-encoded and linearised, with a
-// warning.
-Image read_image(const std::filesystem::path& path);
+// warning). 8/16-bit formats are taken as sRGB-encoded and linearised, with
+// one warning that says how many pixels are clipped (a channel at the top code
+// value: the true radiance is unknown, only that it is at least that). Where
+// `clipped` is given it is set to 1 for those pixels, 0 for the others, and
+// left empty for an HDR (floating-point) file, which clips nothing.
+Image read_image(const std::filesystem::path& path, std::vector<uint8_t>* clipped = nullptr);
 
 // An 8-bit camera image as stored (the camera's tone curve not undone), for
 // merging brackets: RGB codes 0-255, and the exposure time (s) from its EXIF

@@ -1,5 +1,6 @@
 #include "io/scene_io.h"
 
+#include <cmath>
 #include <optional>
 
 #include <spdlog/spdlog.h>
@@ -147,7 +148,8 @@ CameraSpec parse_camera(const JsonReader& r, const json& v, GeometryContents& ge
     // Beyond the image is allowed (strongly shifted lenses), within reason.
     c.principal_point = Vec2(r.number((*pp)[0], pp_ptr + "/0", -10.0f, 10.0f), r.number((*pp)[1], pp_ptr + "/1", -10.0f, 10.0f));
   }
-  r.warn_unknown_keys(v, ptr, {"position", "look_at", "up", "vfov_deg", "principal_point", "from_geometry"});
+  if (auto* aspect = r.optional(v, "aspect")) c.aspect = r.number(*aspect, ptr + "/aspect", 1e-3f, 1e3f);
+  r.warn_unknown_keys(v, ptr, {"position", "look_at", "up", "vfov_deg", "principal_point", "from_geometry", "aspect"});
   return c;
 }
 
@@ -210,6 +212,39 @@ json light_to_json(const Light& l) {
   return j;
 }
 
+AlbedoReference parse_reference(const JsonReader& r, const json& v) {
+  r.expect_object(v, "/reference");
+  AlbedoReference ref;
+  const json& polygon = r.required(v, "/reference", "polygon");
+  if (!polygon.is_array() || polygon.size() < 3)
+    r.fail("/reference/polygon", "expected three or more [x, y] photo pixel positions");
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const std::string ptr = json_child("/reference/polygon", i);
+    if (!polygon[i].is_array() || polygon[i].size() != 2) r.fail(ptr, "expected [x, y] in photo pixels");
+    ref.polygon.emplace_back(r.number(polygon[i][0], ptr + "/0"), r.number(polygon[i][1], ptr + "/1"));
+  }
+  const json& albedo = r.required(v, "/reference", "albedo");
+  const std::string ptr = "/reference/albedo";
+  ref.albedo = albedo.is_number() ? Vec3::Constant(r.number(albedo, ptr, 0.0f, 1.0f)) : r.color(albedo, ptr);
+  if (ref.albedo.minCoeff() <= 0.0f || ref.albedo.maxCoeff() > 1.0f) r.fail(ptr, "expected an albedo in (0, 1]");
+  r.warn_unknown_keys(v, "/reference", {"polygon", "albedo"});
+  return ref;
+}
+
+// A photo cropped (say to 16:9) after the camera was matched on the whole
+// frame (4:3) would be read with the wrong field of view across its width.
+// Within 1 %: a pixel's rounding when the photo was resized.
+void check_photo_aspect(const fs::path& photo_path, const Image& photo, const CameraSpec& camera) {
+  if (camera.aspect <= 0.0f) return;
+  const float photo_aspect = float(photo.width) / float(photo.height);
+  if (std::abs(photo_aspect / camera.aspect - 1.0f) <= 0.01f) return;
+  throw InputError(photo_path.string(), "",
+                   fmt::format("the photo's aspect ratio is {:.4f} ({}x{}) but the camera was matched on an image of "
+                               "aspect ratio {:.4f} (scene.json /camera): use the photo as the camera was matched on "
+                               "(uncropped), or match the camera again",
+                               photo_aspect, photo.width, photo.height, camera.aspect));
+}
+
 }  // namespace
 
 nlohmann::json camera_to_json(const CameraSpec& c) {
@@ -217,6 +252,7 @@ nlohmann::json camera_to_json(const CameraSpec& c) {
   json j = {{"position", v3(c.position)}, {"look_at", v3(c.look_at)}, {"up", v3(c.up)}, {"vfov_deg", c.vfov_deg}};
   if (c.principal_point != Vec2(0.5f, 0.5f))
     j["principal_point"] = json::array({c.principal_point.x(), c.principal_point.y()});
+  if (c.aspect > 0.0f) j["aspect"] = c.aspect;
   return j;
 }
 
@@ -224,7 +260,7 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   const JsonReader r(path.string());
   const json root = JsonReader::parse_file(path);
   expect_format(r, root, "relight-scene/1");
-  r.warn_unknown_keys(root, "", {"format", "photo", "geometry", "camera", "lights", "background", "probes"});
+  r.warn_unknown_keys(root, "", {"format", "photo", "geometry", "camera", "lights", "background", "probes", "reference"});
 
   Scene scene;
   scene.path = path;
@@ -245,6 +281,7 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
     scene.lights = parse_lights(r, root);
   }
   if (auto* bg = r.optional(root, "background")) scene.background = r.color(*bg, "/background");
+  if (auto* reference = r.optional(root, "reference")) scene.reference = parse_reference(r, *reference);
   std::vector<std::pair<const json*, std::string>> probe_specs;
   if (auto* probes = r.optional(root, "probes")) {
     if (!probes->is_array()) r.fail("/probes", "expected an array of probes");
@@ -252,7 +289,8 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   }
 
   check_mesh_references_inside(path.parent_path(), scene.geometry_path);
-  scene.photo = read_image(scene.photo_path);
+  scene.photo = read_image(scene.photo_path, &scene.photo_clipped);
+  check_photo_aspect(scene.photo_path, scene.photo, camera);
   scene.camera = Camera(camera, scene.photo.width, scene.photo.height);
   scene.mesh = load_mesh(scene.geometry_path, progress);
   for (const auto& [spec, ptr] : probe_specs) scene.probes.push_back(parse_probe(r, *spec, ptr, path));
@@ -285,6 +323,11 @@ std::string scene_to_json(const Scene& scene, const fs::path& folder) {
   j["lights"] = json::array();
   for (const auto& l : scene.lights) j["lights"].push_back(light_to_json(l));
   j["background"] = v3(scene.background);
+  if (scene.reference) {
+    json polygon = json::array();
+    for (const Vec2& p : scene.reference->polygon) polygon.push_back({p.x(), p.y()});
+    j["reference"] = {{"polygon", polygon}, {"albedo", v3(scene.reference->albedo)}};
+  }
   if (!scene.probes.empty()) {
     j["probes"] = json::array();
     for (const auto& p : scene.probes)

@@ -18,6 +18,10 @@ struct CameraSpec {
   // shifted photo. vfov_deg is the field of view the photo's height would
   // span with the principal point at its centre (it fixes the focal length).
   Vec2 principal_point = Vec2(0.5f, 0.5f);
+  // Width / height of the image the camera was matched on (fSpy's image, a
+  // glTF camera's aspectRatio, scene.json's optional camera.aspect); 0 where
+  // nothing says. A photo of another shape was cropped or resized since.
+  float aspect = 0.0f;
 };
 
 class Camera {

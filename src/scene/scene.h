@@ -3,7 +3,9 @@
 // background and the probes.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "core/image.h"
@@ -14,15 +16,26 @@
 
 namespace relight {
 
+// A surface of known albedo the photo shows (a grey card): the polygon
+// (photo pixels, x right and y down from the top-left corner) and its albedo.
+struct AlbedoReference {
+  std::vector<Vec2> polygon;
+  Vec3 albedo = Vec3::Constant(0.18f);
+};
+
 struct Scene {
   std::filesystem::path path;  // the scene.json it came from
   Image photo;
+  // 1 where an 8/16-bit photo's pixel has a channel at the top code value:
+  // unreliable, never divided into albedo. Empty for an HDR photo.
+  std::vector<uint8_t> photo_clipped;
   std::filesystem::path photo_path, geometry_path;
   TriangleMesh mesh;
   Camera camera;
   std::vector<Light> lights;
   Vec3 background = Vec3::Zero();
   std::vector<Probe> probes;
+  std::optional<AlbedoReference> reference;  // scene.json's optional `reference`
 };
 
 // A lighting design: rig.json.
