@@ -166,19 +166,22 @@ TEST(AnalysisCache, RenderRefusesAnAnalysisOfChangedInputs) {
   }
 }
 
+// Analyses the folder's scene into f/analysis at 1 spp; the command that
+// renders its rig from that analysis into f/relit.exr.
+std::vector<std::string> analysed_render(SceneFolder& f) {
+  const std::string scene = (f / "scene.json").string(), analysis = (f / "analysis").string();
+  EXPECT_EQ(run_cli({"analyze", scene, "-o", analysis, "--spp", "1"}).status, 0);
+  return {"render", scene, "--rig", (f / "rig.json").string(), "--analysis", analysis, "-o", (f / "relit.exr").string(),
+          "--spp",  "1"};
+}
+
 // analysis.json edited by hand or damaged: each wrong value is named by its
 // key, and nothing is rendered.
 TEST(AnalysisCache, RenderNamesTheKeyOfABadAnalysisFile) {
   SceneFolder f("analysis_bad_key");
   f.write_json();
-  const std::string scene = (f / "scene.json").string();
-  const fs::path analysis = f / "analysis", meta = analysis / "analysis.json";
-  ASSERT_EQ(run_cli({"analyze", scene, "-o", analysis.string(), "--spp", "1"}).status, 0);
-  const std::vector<std::string> render = {"render",     scene,
-                                           "--rig",      (f / "rig.json").string(),
-                                           "--analysis", analysis.string(),
-                                           "-o",         (f / "relit.exr").string(),
-                                           "--spp",      "1"};
+  const std::vector<std::string> render = analysed_render(f);
+  const fs::path meta = f / "analysis" / "analysis.json";
   const std::string original = read_text(meta);
   const struct {
     const char* key;
@@ -188,7 +191,7 @@ TEST(AnalysisCache, RenderNamesTheKeyOfABadAnalysisFile) {
              {"seed", -1, "analysis.json: /seed: expected a whole number"},
              {"bounce_source", "mirror", "analysis.json: /bounce_source: unknown value 'mirror'"},
              {"unseen_albedo", 0.5, "analysis.json: /unseen_albedo"},
-             {"unseen_triangles", relight::test::json::array({{1e9, 0.5, 0.5, 0.5}}),
+             {"unseen_triangles", relight::test::json::array({{1000000000, 0.5, 0.5, 0.5}}),
               "analysis.json: /unseen_triangles/0: names a triangle the geometry does not have"}};
   for (const auto& b : bad) {
     auto j = relight::test::json::parse(original);
@@ -209,14 +212,8 @@ TEST(AnalysisCache, RenderNamesTheKeyOfABadAnalysisFile) {
 TEST(AnalysisCache, RenderRefusesImagesOtherThanThoseItDescribes) {
   SceneFolder f("analysis_mixed");
   f.write_json();
-  const std::string scene = (f / "scene.json").string();
+  const std::vector<std::string> render = analysed_render(f);
   const fs::path analysis = f / "analysis";
-  ASSERT_EQ(run_cli({"analyze", scene, "-o", analysis.string(), "--spp", "1"}).status, 0);
-  const std::vector<std::string> render = {"render",     scene,
-                                           "--rig",      (f / "rig.json").string(),
-                                           "--analysis", analysis.string(),
-                                           "-o",         (f / "relit.exr").string(),
-                                           "--spp",      "1"};
   for (const char* image : {"albedo_surface.exr", "albedo.exr", "background.exr", "mask.exr"}) {
     const std::string original = read_text(analysis / image);
     relight::write_exr(analysis / image, Image(8, 6, Vec3(0.5f, 0.4f, 0.3f)));  // the photo's size, other pixels

@@ -17,14 +17,48 @@ namespace relight::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+struct AnalyzeArgs {
+  std::string scene, out, strategy, interreflection = "on", method = "path", direct_light = "pixels",
+                                    bounce_source = "photo";
+  bool save_renders = false;
+  AnalysisOptions options;
+};
+
+void run_analyze(const AnalyzeArgs& args, Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  LoadedScene s = load_for_analysis(args.scene, args.options, progress);
+  warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
+  AnalysisOptions options = args.options;
+  options.strategy = args.strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args.strategy);
+  options.interreflection = args.interreflection == "on";
+  options.method = *parse_analysis_method(args.method);
+  options.bounce_source = *parse_bounce_source(args.bounce_source);
+  options.direct_per_pixel = args.direct_light == "pixels";
+  std::vector<Image> renders;  // albedo_coverage of each render, with --save-renders
+  const auto keep = [&](int, const AlbedoImages& albedo) { renders.push_back(albedo.albedo_coverage); };
+  const Analysis analysis =
+      analyze(s.scene, *s.rays, *s.gbuffer, options, progress, args.save_renders ? AlbedoObserver(keep) : nullptr);
+  OutputBatch folder;  // the renders appear with the analysis
+  save_analysis(args.out, analysis, s.scene);
+  for (size_t i = 0; i < renders.size(); ++i)
+    write_exr(fs::path(args.out) / ("albedo_render" + std::to_string(i + 1) + ".exr"), renders[i]);
+  folder.commit();
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string sampling = options.method == AnalysisMethod::path
+                                   ? std::to_string(options.paths_per_pixel) + " spp"
+                                   : "radiosity, " + std::to_string(options.node_samples) + " samples and " +
+                                         std::to_string(options.gather_rays) + " rays per node";
+  std::printf("analysis (%s, %s, %d render%s, residual %.1f %%) written to %s in %.1f s\n", to_string(options.strategy),
+              sampling.c_str(), analysis.iterations, analysis.iterations > 1 ? "s" : "", 100.0 * analysis.residual,
+              args.out.c_str(), secs);
+}
+
+}  // namespace
+
 void add_analyze_command(CLI::App& app, Action& action) {
-  struct Args {
-    std::string scene, out, strategy, interreflection = "on", method = "path", direct_light = "pixels",
-                                      bounce_source = "photo";
-    bool save_renders = false;
-    AnalysisOptions options;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<AnalyzeArgs>();
   CLI::App* cmd = app.add_subcommand("analyze", "recover the albedo: divide the photo by the simulated illumination");
   cmd->add_option("scene", args->scene, "scene.json")->required();
   cmd->add_option("-o,--out", args->out, "output folder (created)")->required();
@@ -73,36 +107,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
                     "simulate the light from the probes only, with less noise"},
                    {"relight analyze scene.json -o analysis --method radiosity",
                     "simulate it by radiosity on a mesh refined along the photo's shadows (the thesis's method)"}}));
-  cmd->callback([&action, args] {
-    action = [args](Progress& progress) {
-      const auto start = std::chrono::steady_clock::now();
-      LoadedScene s = load_for_analysis(args->scene, args->options, progress);
-      warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
-      AnalysisOptions options = args->options;
-      options.strategy = args->strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args->strategy);
-      options.interreflection = args->interreflection == "on";
-      options.method = *parse_analysis_method(args->method);
-      options.bounce_source = *parse_bounce_source(args->bounce_source);
-      options.direct_per_pixel = args->direct_light == "pixels";
-      std::vector<Image> renders;  // albedo_coverage of each render, with --save-renders
-      const auto keep = [&](int, const AlbedoImages& albedo) { renders.push_back(albedo.albedo_coverage); };
-      const Analysis analysis =
-          analyze(s.scene, *s.rays, *s.gbuffer, options, progress, args->save_renders ? AlbedoObserver(keep) : nullptr);
-      OutputBatch folder;  // the renders appear with the analysis
-      save_analysis(args->out, analysis, s.scene);
-      for (size_t i = 0; i < renders.size(); ++i)
-        write_exr(fs::path(args->out) / ("albedo_render" + std::to_string(i + 1) + ".exr"), renders[i]);
-      folder.commit();
-      const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const std::string sampling = options.method == AnalysisMethod::path
-                                       ? std::to_string(options.paths_per_pixel) + " spp"
-                                       : "radiosity, " + std::to_string(options.node_samples) + " samples and " +
-                                             std::to_string(options.gather_rays) + " rays per node";
-      std::printf("analysis (%s, %s, %d render%s, residual %.1f %%) written to %s in %.1f s\n",
-                  to_string(options.strategy), sampling.c_str(), analysis.iterations,
-                  analysis.iterations > 1 ? "s" : "", 100.0 * analysis.residual, args->out.c_str(), secs);
-    };
-  });
+  run_when_parsed(*cmd, action, args, run_analyze);
 }
 
 }  // namespace relight::cli

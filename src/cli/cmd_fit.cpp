@@ -13,13 +13,56 @@ namespace relight::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+struct FitArgs {
+  std::string scene, out;
+  AnalysisOptions options;
+  bool refine_placement = false, register_camera = false;
+};
+
+void run_fit(const FitArgs& args, Progress& progress) {
+  LoadedScene s = load_for_analysis(args.scene, args.options, progress);
+  if (args.register_camera) {
+    register_and_report(s.scene, *s.rays, RegistrationOptions{}, progress);
+    s.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s.scene, *s.rays, args.options));
+  }
+  warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
+  FitOptions options;
+  options.paths_per_pixel = args.options.paths_per_pixel;
+  options.seed = args.options.seed;
+  options.max_bounces = args.options.max_bounces;
+  options.refine_placement = args.refine_placement;
+  const FitResult fit = fit_lighting(s.scene, *s.rays, *s.gbuffer, options, progress);
+  const fs::path out = fs::absolute(args.out);
+  write_text_atomically(out, scene_to_json(fit.scene, out.parent_path()));
+  for (const auto& l : fit.lights)
+    std::printf("%-16s emission %.4g %.4g %.4g -> %.4g %.4g %.4g (%s)\n", l.name.c_str(), l.emission_before.x(),
+                l.emission_before.y(), l.emission_before.z(), l.emission_after.x(), l.emission_after.y(),
+                l.emission_after.z(), l.source.c_str());
+  std::printf("%-16s %.4g %.4g %.4g -> %.4g %.4g %.4g (%s)\n", "background", fit.background_before.x(),
+              fit.background_before.y(), fit.background_before.z(), fit.background_after.x(), fit.background_after.y(),
+              fit.background_after.z(), fit.background_source.c_str());
+  for (const auto& p : fit.placement) {
+    const float moved = p.moved_m(), turned = p.turned_deg();
+    std::printf("%-16s", p.name.c_str());
+    if (moved > 0.0f)
+      std::printf(" moved %.3g m to %.4g %.4g %.4g", moved, p.position_after.x(), p.position_after.y(),
+                  p.position_after.z());
+    if (turned > 0.0f)
+      std::printf(" turned %.3g degrees to %.4g %.4g %.4g", turned, p.direction_after.x(), p.direction_after.y(),
+                  p.direction_after.z());
+    if (moved == 0.0f && turned == 0.0f) std::printf(" stays where it was");
+    std::printf(" (shadow mismatch %.4f -> %.4f)\n", p.objective_before, p.objective_after);
+  }
+  std::printf("%zu shadow-edge pixel pairs\n", fit.edge_pairs);
+  std::printf("fitted scene written to %s\n", args.out.c_str());
+}
+
+}  // namespace
+
 void add_fit_command(CLI::App& app, Action& action) {
-  struct Args {
-    std::string scene, out;
-    AnalysisOptions options;
-    bool refine_placement = false, register_camera = false;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<FitArgs>();
   args->options.paths_per_pixel = FitOptions{}.paths_per_pixel;
   CLI::App* cmd = app.add_subcommand("fit", "fit the lights' power and colour and the background to the photo");
   cmd->add_option("scene", args->scene, "scene.json")->required();
@@ -38,45 +81,7 @@ void add_fit_command(CLI::App& app, Action& action) {
         "fit the lights, then analyse with the fitted scene"},
        {"relight fit scene.json --refine-placement -o scene_fitted.json",
         "also correct the lights' positions and directions from the shadows"}}));
-  cmd->callback([&action, args] {
-    action = [args](Progress& progress) {
-      LoadedScene s = load_for_analysis(args->scene, args->options, progress);
-      if (args->register_camera) {
-        register_and_report(s.scene, *s.rays, RegistrationOptions{}, progress);
-        s.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s.scene, *s.rays, args->options));
-      }
-      warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
-      FitOptions options;
-      options.paths_per_pixel = args->options.paths_per_pixel;
-      options.seed = args->options.seed;
-      options.max_bounces = args->options.max_bounces;
-      options.refine_placement = args->refine_placement;
-      const FitResult fit = fit_lighting(s.scene, *s.rays, *s.gbuffer, options, progress);
-      const fs::path out = fs::absolute(args->out);
-      write_text_atomically(out, scene_to_json(fit.scene, out.parent_path()));
-      for (const auto& l : fit.lights)
-        std::printf("%-16s emission %.4g %.4g %.4g -> %.4g %.4g %.4g (%s)\n", l.name.c_str(), l.emission_before.x(),
-                    l.emission_before.y(), l.emission_before.z(), l.emission_after.x(), l.emission_after.y(),
-                    l.emission_after.z(), l.source.c_str());
-      std::printf("%-16s %.4g %.4g %.4g -> %.4g %.4g %.4g (%s)\n", "background", fit.background_before.x(),
-                  fit.background_before.y(), fit.background_before.z(), fit.background_after.x(),
-                  fit.background_after.y(), fit.background_after.z(), fit.background_source.c_str());
-      for (const auto& p : fit.placement) {
-        const float moved = p.moved_m(), turned = p.turned_deg();
-        std::printf("%-16s", p.name.c_str());
-        if (moved > 0.0f)
-          std::printf(" moved %.3g m to %.4g %.4g %.4g", moved, p.position_after.x(), p.position_after.y(),
-                      p.position_after.z());
-        if (turned > 0.0f)
-          std::printf(" turned %.3g degrees to %.4g %.4g %.4g", turned, p.direction_after.x(), p.direction_after.y(),
-                      p.direction_after.z());
-        if (moved == 0.0f && turned == 0.0f) std::printf(" stays where it was");
-        std::printf(" (shadow mismatch %.4f -> %.4f)\n", p.objective_before, p.objective_after);
-      }
-      std::printf("%zu shadow-edge pixel pairs\n", fit.edge_pairs);
-      std::printf("fitted scene written to %s\n", args->out.c_str());
-    };
-  });
+  run_when_parsed(*cmd, action, args, run_fit);
 }
 
 }  // namespace relight::cli
