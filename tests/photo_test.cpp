@@ -498,6 +498,26 @@ TEST(FitWithoutProbe, WarnsThatPowerAndAlbedoTradeOffAndOfAlbedoAboveOne) {
   EXPECT_EQ(fine.err.find("the albedo is above 1 on"), std::string::npos) << fine.err;
 }
 
+// The lamp and the background far too weak for the photo, at `analyze`: the
+// albedo above 1 is named, for the pixels and for the surfaces the camera
+// does not see (they take the seen surfaces' mean).
+TEST(AnalyzeWithWeakLights, WarnsOfAlbedoAboveOne) {
+  SceneFolder f("analyze_albedo_above_one");
+  f.scene["lights"][0]["power"] = 2.0;
+  f.scene["background"] = {0.02, 0.02, 0.02};
+  f.write_json();
+  const auto r = run_cli({"analyze", (f / "scene.json").string(), "-o", (f / "analysis").string(), "--spp", "2"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("with the scene's lighting the albedo is above 1 on"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the surfaces the camera does not see take an albedo of"), std::string::npos) << r.err;
+  f.scene["lights"][0]["power"] = 200.0;
+  f.scene["background"] = {0.3, 0.3, 0.3};
+  f.write_json();
+  const auto fine = run_cli({"analyze", (f / "scene.json").string(), "-o", (f / "analysis").string(), "--spp", "2"});
+  ASSERT_EQ(fine.status, 0) << fine.err;
+  EXPECT_EQ(fine.err.find("above 1"), std::string::npos) << fine.err;
+}
+
 // A grey card (here: the whole 8 x 6 photo, of albedo [0.5, 0.4, 0.3]) fixes
 // the exposure and white balance: `fit` scales the lights so that the
 // analysis then recovers that albedo there.

@@ -9,6 +9,7 @@
 #include "analysis/probe_cleanup.h"
 #include "analysis/probe_lights.h"
 #include "analysis/surface_albedo.h"
+#include "analysis/view_checks.h"
 #include "render/direct_light.h"
 
 namespace relight {
@@ -52,10 +53,6 @@ bool inside(const std::vector<Vec2>& polygon, const Vec2& p) {
   }
   return in;
 }
-
-// The share of the surfaces in view whose albedo may exceed 1 (noise,
-// highlights) before the fit warns that the lighting is too weak.
-constexpr double kMaxShareAboveOne = 0.01;
 
 // Nearby pixels (a few apart) on one plane, fully covered, where the
 // share of the lights in the illumination differs: across a shadow edge.
@@ -273,21 +270,8 @@ class LightingFit {
     result.reference_scale = ratio;
   }
 
-  // An albedo above 1 is no surface: the lights given are too weak (or one
-  // is missing, or a probe was forgotten) for the photo's brightness.
   void warn_if_albedo_above_one() const {
-    size_t covered = 0, above = 0;
-    for (int y = 0; y < gbuffer_.height(); ++y)
-      for (int x = 0; x < gbuffer_.width(); ++x) {
-        if (gbuffer_.coverage(x, y) < 1.0f) continue;
-        ++covered;
-        if (bounce_albedo_.at(x, y).maxCoeff() > 1.0f) ++above;
-      }
-    if (covered == 0 || double(above) <= kMaxShareAboveOne * double(covered)) return;
-    spdlog::warn(
-        "{}: with the fitted lighting the albedo is above 1 on {:.1f} % of the surfaces in view: the lights "
-        "are too weak for the photo (a light missing, its power too low, or a probe forgotten)",
-        scene_.path.string(), 100.0 * double(above) / double(covered));
+    warn_about_albedo_above_one(scene_.path.string(), gbuffer_, bounce_albedo_, unseen_, "the fitted lighting");
   }
 
   // Soft light (a lamp indoors) casts too few sharp shadows to tell the

@@ -16,6 +16,9 @@ namespace {
 
 constexpr float kMinCoverage = 0.05f;  // of the photo
 constexpr float kUnitRatio = 50.0f;    // depth against the lights' distances
+// The share of the surfaces in view whose albedo may exceed 1 (noise,
+// highlights) before the lighting is said to be too weak.
+constexpr double kMaxShareAboveOne = 0.01;
 
 float median(std::vector<float> values) {
   std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
@@ -79,6 +82,24 @@ void warn_about_the_view(const Scene& scene, const RayScene& rays, const GBuffer
   warn_about_coverage(scene, gbuffer);
   warn_about_depth(scene, view);
   warn_about_unseen_lights(scene, rays, view);
+}
+
+void warn_about_albedo_above_one(const std::string& scene_file, const GBuffer& gbuffer, const Image& albedo,
+                                 const Vec3& unseen, const char* lighting) {
+  size_t covered = 0, above = 0;
+  for (int y = 0; y < gbuffer.height(); ++y)
+    for (int x = 0; x < gbuffer.width(); ++x) {
+      if (gbuffer.coverage(x, y) < 1.0f) continue;
+      ++covered;
+      if (albedo.at(x, y).maxCoeff() > 1.0f) ++above;
+    }
+  const char* why = "the lights are too weak for the photo (a light missing, its power too low, or a probe forgotten)";
+  if (covered > 0 && double(above) > kMaxShareAboveOne * double(covered))
+    spdlog::warn("{}: with {} the albedo is above 1 on {:.1f} % of the surfaces in view: {}", scene_file, lighting,
+                 100.0 * double(above) / double(covered), why);
+  if (unseen.maxCoeff() > 1.0f)
+    spdlog::warn("{}: with {} the surfaces the camera does not see take an albedo of {:.2f} {:.2f} {:.2f}, above 1: {}",
+                 scene_file, lighting, unseen.x(), unseen.y(), unseen.z(), why);
 }
 
 }  // namespace relight

@@ -5,6 +5,9 @@
 // `fit` and `analyze` start, so that a mistake is named before the work.
 #pragma once
 
+#include <string>
+
+#include "core/image.h"
 #include "render/gbuffer.h"
 #include "render/ray_scene.h"
 #include "scene/scene.h"
@@ -12,5 +15,14 @@
 namespace relight {
 
 void warn_about_the_view(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer);
+
+// After the division: an albedo above 1 is no surface (it reflects more than
+// it receives). Warns, naming the scene file, where that holds on more than
+// 1 % of the fully covered pixels of `albedo` (photo-sized), or for the
+// surfaces the camera does not see (`unseen`): the lights given are too weak
+// for the photo (a light missing, its power too low, a probe forgotten).
+// `lighting` says which lighting gave it ("the fitted lighting", ...).
+void warn_about_albedo_above_one(const std::string& scene_file, const GBuffer& gbuffer, const Image& albedo,
+                                 const Vec3& unseen, const char* lighting);
 
 }  // namespace relight

@@ -40,6 +40,8 @@ void run_analyze(const AnalyzeArgs& args, Progress& progress) {
   const auto keep = [&](int, const AlbedoImages& albedo) { renders.push_back(albedo.albedo_coverage); };
   const Analysis analysis =
       analyze(s.scene, *s.rays, *s.gbuffer, options, progress, args.save_renders ? AlbedoObserver(keep) : nullptr);
+  warn_about_albedo_above_one(s.scene.path.string(), *s.gbuffer, analysis.albedo.albedo, analysis.albedo.mean,
+                              "the scene's lighting");
   OutputBatch folder;  // the renders appear with the analysis
   save_analysis(args.out, analysis, s.scene);
   for (size_t i = 0; i < renders.size(); ++i)
