@@ -11,11 +11,14 @@
 #include <QPushButton>
 #include <QSettings>
 #include <QSignalSpy>
+#include <QStatusBar>
 #include <QTemporaryDir>
 #include <QTimer>
 #include <QtTest/QtTest>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "gui/geometry_view.h"
 #include "gui/light_dialog.h"
@@ -143,6 +146,32 @@ class StudioTest : public QObject {
     QCOMPARE(document().light_count(), 1);
     QCOMPARE(document().light(0).name, std::string("lamp"));
     QCOMPARE(window_->selected_light(), 0);
+  }
+
+  // A folder `relight analyze` made is used as it is, with no analysis run;
+  // one for other inputs is refused with a message naming it, and the open
+  // scene stays.
+  void an_analysis_folder_given_is_used_and_a_stale_one_refused() {
+    const fs::path copy = folder_.path().toStdString();
+    const fs::path given = copy / "given_analysis";
+    fs::remove_all(given);
+    fs::copy(copy / "scene.analysis", given);
+    QSignalSpy opened(window_.get(), &MainWindow::sceneOpened);
+    window_->open_scene(scene_, {}, QString::fromStdString(given.string()));
+    QVERIFY(opened.wait(60000));
+    QVERIFY(document().studio_scene().from_cache);
+    QCOMPARE(document().studio_scene().analysis_folder, given);
+    QVERIFY(window_->statusBar()->currentMessage().contains("given_analysis"));
+
+    nlohmann::json meta = nlohmann::json::parse(std::ifstream(given / "analysis.json"));
+    meta["seed"] = meta["seed"].get<int>() + 1;  // another analysis's settings: stale for this scene
+    std::ofstream(given / "analysis.json") << meta.dump(2);
+    QSignalSpy failed(window_.get(), &MainWindow::openFailed);
+    window_->open_scene(scene_, {}, QString::fromStdString(given.string()));
+    QVERIFY(failed.wait(60000));
+    QVERIFY(failed.at(0).at(0).toString().contains("analysis is stale"));
+    QVERIFY(failed.at(0).at(0).toString().contains("given_analysis"));
+    QCOMPARE(document().light_count(), 1);  // the open scene stays
   }
 
   void a_missing_scene_is_a_message_naming_it() {

@@ -113,6 +113,16 @@ void MainWindow::make_menus() {
         QFileDialog::getOpenFileName(this, tr("Open scene"), QFileInfo(scene_path_).path(), tr("Scenes (*.json)"));
     if (!path.isEmpty()) open_scene(path);
   });
+  file->addAction(tr("Open &Analysis\u2026"), this, [this] {
+    if (!maybe_keep_changes()) return;
+    QString scene = scene_path_;
+    if (scene.isEmpty()) scene = QFileDialog::getOpenFileName(this, tr("Open scene"), QString(), tr("Scenes (*.json)"));
+    if (scene.isEmpty()) return;
+    const QString folder = QFileDialog::getExistingDirectory(
+        this, tr("Open the analysis folder 'relight analyze' made for %1").arg(QFileInfo(scene).fileName()),
+        QFileInfo(scene).path());
+    if (!folder.isEmpty()) open_scene(scene, {}, folder);
+  });
   QMenu* recent_scenes = file->addMenu(tr("Recent &Scenes"));
   connect(recent_scenes, &QMenu::aboutToShow, this,
           [this, recent_scenes] { fill_recent_menu(recent_scenes, kRecentScenes); });
@@ -182,23 +192,25 @@ void MainWindow::run_task(const QString& label, BackgroundTask::Work work, std::
   update_actions();
 }
 
-void MainWindow::open_scene(const QString& scene_path, const QString& rig_path) {
+void MainWindow::open_scene(const QString& scene_path, const QString& rig_path, const QString& analysis_folder) {
   if (busy()) return;
   auto loaded = std::make_shared<std::shared_ptr<const StudioScene>>();
   const AnalysisOptions analysis = options_.analysis;
-  const std::string path = scene_path.toStdString();
-  run_task(
-      tr("Analysing %1\u2026").arg(QFileInfo(scene_path).fileName()),
-      [loaded, analysis, path](Progress& progress) { *loaded = load_studio_scene(path, analysis, progress); },
-      [this, loaded, scene_path, rig_path](const QString& error) {
-        if (!error.isEmpty()) {
-          show_error(error == "cancelled" ? tr("Opening %1 was cancelled.").arg(scene_path) : error);
-          emit openFailed(error);
-          return;
-        }
-        install_scene(*loaded, scene_path, rig_path);
-        emit sceneOpened();
-      });
+  const std::string path = scene_path.toStdString(), folder = analysis_folder.toStdString();
+  run_task((analysis_folder.isEmpty() ? tr("Analysing %1\u2026") : tr("Opening %1\u2026"))
+               .arg(QFileInfo(scene_path).fileName()),
+           [loaded, analysis, path, folder](Progress& progress) {
+             *loaded = load_studio_scene(path, analysis, progress, folder);
+           },
+           [this, loaded, scene_path, rig_path](const QString& error) {
+             if (!error.isEmpty()) {
+               show_error(error == "cancelled" ? tr("Opening %1 was cancelled.").arg(scene_path) : error);
+               emit openFailed(error);
+               return;
+             }
+             install_scene(*loaded, scene_path, rig_path);
+             emit sceneOpened();
+           });
 }
 
 void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path,
@@ -243,8 +255,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   if (!rig_path_.isEmpty()) remember(kRecentRigs, rig_path_);
   statusBar()->showMessage(
       scene_->from_cache
-          ? tr("Analysis read from %1")
-                .arg(QString::fromStdString(analysis_cache_folder(scene_path.toStdString()).filename().string()))
+          ? tr("Analysis read from %1").arg(QString::fromStdString(scene_->analysis_folder.filename().string()))
           : tr("Scene analysed; the analysis is kept next to the scene for next time"),
       8000);
   if (!document_->session().backend_note().empty())

@@ -27,9 +27,9 @@ class PhotoView;
 class TaskStatus;
 
 struct StudioOptions {
-  AnalysisOptions analysis;  // for a scene without a cached analysis
-  SessionOptions session;    // its backend draws moving lights; its view size is chosen from the photo
-  int max_view_width = 1280; // larger photos are shown (and edited) smaller; an export is always full size
+  AnalysisOptions analysis;   // for a scene without a cached analysis
+  SessionOptions session;     // its backend draws moving lights; its view size is chosen from the photo
+  int max_view_width = 1280;  // larger photos are shown (and edited) smaller; an export is always full size
   bool remember_recent = true;
 };
 // The defaults of the application: the OpenGL backend where it can open.
@@ -44,7 +44,9 @@ class MainWindow : public QMainWindow {
 
   // Loads the scene on a worker (sceneOpened or openFailed follows) with the
   // rig, or the scene's own lights where rig_path is empty.
-  void open_scene(const QString& scene_path, const QString& rig_path = {});
+  // With analysis_folder, the analysis `relight analyze` made there is used
+  // (File > Open Analysis); else the scene's cache, or a new analysis.
+  void open_scene(const QString& scene_path, const QString& rig_path = {}, const QString& analysis_folder = {});
   bool open_rig(const QString& path);
   bool save_rig(const QString& path);
   // Renders the rig at full quality on a worker and writes EXR or PNG (by

@@ -53,6 +53,10 @@ struct StudioCommandLine {
   QCommandLineOption screenshot{"screenshot", "write the main form to FILE.png once converged, and quit", "FILE.png"};
   QCommandLineOption size{"size", "window size WIDTHxHEIGHT", "WxH", "1500x900"};
   QCommandLineOption split{"split", "before/after split, percent of the width showing the photo", "PERCENT", "0"};
+  QCommandLineOption analysis{"analysis",
+                              "use the analysis folder 'relight analyze' made for the scene (else the scene's cache "
+                              "next to it, or a new analysis)",
+                              "DIR"};
   QCommandLineOption repair{"repair-mesh",
                             "drop the geometry's degenerate (zero-area) triangles instead of refusing it "
                             "(or set RELIGHT_REPAIR_MESH=1)"};
@@ -63,7 +67,7 @@ struct StudioCommandLine {
     parser.addVersionOption();
     parser.addPositionalArgument("scene", "scene.json to open (analysed once, then cached next to it)", "[SCENE.json");
     parser.addPositionalArgument("rig", "rig.json with the lights (default: the scene's own)", "[RIG.json]]");
-    parser.addOptions({cpu, screenshot, size, split, repair});
+    parser.addOptions({cpu, screenshot, size, split, analysis, repair});
   }
 };
 
@@ -120,10 +124,11 @@ int run_studio(int argc, char** argv) {
   const QStringList files = parser.positionalArguments();
   const QRegularExpressionMatch wxh =
       QRegularExpression("^(\\d{3,5})x(\\d{3,5})$").match(parser.value(options_given.size));
-  if (files.size() > 2 || !wxh.hasMatch() || (parser.isSet(options_given.screenshot) && files.isEmpty())) {
+  const bool needs_scene = parser.isSet(options_given.screenshot) || parser.isSet(options_given.analysis);
+  if (files.size() > 2 || !wxh.hasMatch() || (needs_scene && files.isEmpty())) {
     std::fprintf(stderr,
-                 "relight-studio: usage: relight-studio [--size WxH] [--screenshot FILE.png] "
-                 "[SCENE.json [RIG.json]] (--screenshot needs a scene)\n");
+                 "relight-studio: usage: relight-studio [--size WxH] [--screenshot FILE.png] [--analysis DIR] "
+                 "[SCENE.json [RIG.json]] (--screenshot and --analysis need a scene)\n");
     return 2;
   }
 
@@ -134,7 +139,8 @@ int run_studio(int argc, char** argv) {
   window.findChild<QSlider*>("split")->setValue(parser.value(options_given.split).toInt());
   if (parser.isSet(options_given.screenshot)) screenshot_when_converged(window, parser.value(options_given.screenshot));
   window.show();
-  if (!files.isEmpty()) window.open_scene(files[0], files.size() > 1 ? files[1] : QString());
+  if (!files.isEmpty())
+    window.open_scene(files[0], files.size() > 1 ? files[1] : QString(), parser.value(options_given.analysis));
   return QApplication::exec();
 }
 

@@ -16,10 +16,17 @@ fs::path analysis_cache_folder(const fs::path& scene_path) {
 }
 
 std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const AnalysisOptions& options,
-                                               Progress& progress) {
+                                               Progress& progress, const fs::path& analysis_folder) {
   auto s = std::make_unique<StudioScene>();
   Scene scene = load_scene(scene_path, progress);
+  if (!analysis_folder.empty()) {
+    s->analysed = AnalysedScene::from_folder(std::move(scene), analysis_folder);
+    s->from_cache = true;
+    s->analysis_folder = analysis_folder;
+    return s;
+  }
   const fs::path cache = analysis_cache_folder(scene_path);
+  s->analysis_folder = cache;
   try {
     s->analysed = AnalysedScene::from_folder(std::move(scene), cache);
     s->from_cache = true;

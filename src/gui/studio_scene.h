@@ -15,18 +15,21 @@ namespace relight::gui {
 
 struct StudioScene {
   std::unique_ptr<const AnalysedScene> analysed;
-  bool from_cache = false;  // the analysis was read from the cache folder
+  bool from_cache = false;                // the analysis was read from a folder, not made now
+  std::filesystem::path analysis_folder;  // where it was read from or written to
 };
 
 // The cache folder of a scene: "room/scene.json" -> "room/scene.analysis".
 std::filesystem::path analysis_cache_folder(const std::filesystem::path& scene_path);
 
-// Loads scene.json and its analysis: from the cache folder where it holds one
-// for these inputs, else analysed now with `options` (the strategy the
-// scene's data suggests) and written to the cache. A cache that cannot be
+// Loads scene.json and its analysis: from `analysis_folder` where one is
+// given (an analysis `relight analyze` made; a missing, stale or mixed one is
+// an InputError, never analysed over); else from the cache folder where it
+// holds one for these inputs, else analysed now with `options` (the strategy
+// the scene's data suggests) and written to the cache. A cache that cannot be
 // written is only a warning. Throws InputError for a bad scene, Cancelled if
 // progress is cancelled.
 std::unique_ptr<StudioScene> load_studio_scene(const std::filesystem::path& scene_path, const AnalysisOptions& options,
-                                               Progress& progress);
+                                               Progress& progress, const std::filesystem::path& analysis_folder = {});
 
 }  // namespace relight::gui
