@@ -100,15 +100,13 @@ struct RelightSession::Composition {
 };
 
 RelightSession::RelightSession(const AnalysedScene& analysed, const Rig& rig, const SessionOptions& options)
-    : scene_(analysed.scene()),
-      rays_(analysed.rays()),
-      analysis_(analysed.analysis()),
+    : analysed_(analysed),
       options_(options),
       illumination_(analysed),
       view_(std::make_unique<RelightView>(analysed, options.width, options.height)) {
   if (options_.backend == Backend::gl) {
     std::string why;
-    fast_ = GlRelighter::open(scene_.mesh, view_->surfaces(), options_.shadow_maps, why);
+    fast_ = GlRelighter::open(analysed_.scene().mesh, view_->surfaces(), options_.shadow_maps, why);
     if (fast_) {
       backend_ = Backend::gl;
     } else {
@@ -116,7 +114,8 @@ RelightSession::RelightSession(const AnalysedScene& analysed, const Rig& rig, co
       spdlog::warn("{}", backend_note_);
     }
   }
-  if (!fast_) fast_ = std::make_unique<CpuDirectLight>(view_->surfaces(), rays_, analysis_.options.seed);
+  if (!fast_)
+    fast_ = std::make_unique<CpuDirectLight>(view_->surfaces(), analysed_.rays(), analysed_.analysis().options.seed);
 
   environment_scale_ = rig.environment_scale;
   for (const Light& light : rig.lights) {
@@ -341,7 +340,7 @@ void RelightSession::run_job(Job& job) {
   const RelightView& view = *view_;
   const RenderOptions bounce_options{options_.bounce_paths, options_.final_render.max_bounces};
   DirectLightSettings direct;
-  direct.seed = analysis_.options.seed;
+  direct.seed = analysed_.analysis().options.seed;
   try {
     switch (job.kind) {
       case Kind::interactive:
@@ -351,13 +350,13 @@ void RelightSession::run_job(Job& job) {
         break;
       case Kind::antialiased:  // every sub-pixel sample, one light sample each
         direct.pass = 1;
-        job.done = render_direct_light(view.gbuffer(), rays_, job.light, direct, job.result, &job.cancel);
+        job.done = render_direct_light(view.gbuffer(), analysed_.rays(), job.light, direct, job.result, &job.cancel);
         break;
       case Kind::soft: {
         const int spp = view.gbuffer().samples_per_pixel();
         direct.pass = 2;
         direct.light_samples = std::max(1, (options_.soft_light_samples + spp - 1) / spp);
-        job.done = render_direct_light(view.gbuffer(), rays_, job.light, direct, job.result, &job.cancel);
+        job.done = render_direct_light(view.gbuffer(), analysed_.rays(), job.light, direct, job.result, &job.cancel);
         break;
       }
       case Kind::environment: {

@@ -114,9 +114,7 @@ class RelightSession {
   uint64_t insert_light_locked(size_t index, const Light& light);
   uint64_t edited_locked(uint64_t light_id, bool geometry);
 
-  const Scene& scene_;
-  const RayScene& rays_;
-  const Analysis& analysis_;
+  const AnalysedScene& analysed_;
   SessionOptions options_;
   NewIllumination illumination_;
   std::unique_ptr<RelightView> view_;
