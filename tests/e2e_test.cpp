@@ -96,9 +96,11 @@ TEST_P(ReferenceScene, AlbedoAndRelitImagesMatchTheTruth) {
 INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceScene, testing::Values("outdoor", "bookcase", "studio"));
 
 // --method radiosity at its defaults (the lights' direct light per pixel at
-// the fewest paths, 9: one per G-buffer sample). Measured 33.1 dB (outdoor)
-// and 27.6 dB (bookcase); seeds 1-3 varied by 0.1 dB. docs/benchmarks.md "Radiosity against path
-// tracing"; asserted with a margin for the noise of other seeds.
+// the fewest paths, 9: one per G-buffer sample; the bounce light from the
+// photo). Measured 33.47 dB (outdoor), 27.35 dB (bookcase) and 32.67 dB
+// (studio, 13.4 dB with --bounce-source albedo); docs/benchmarks.md
+// "Radiosity against path tracing"; asserted with a margin for the noise of
+// other seeds.
 class ReferenceSceneRadiosity : public ReferenceScene {};
 
 TEST_P(ReferenceSceneRadiosity, RadiosityAlbedo) {
@@ -109,9 +111,10 @@ TEST_P(ReferenceSceneRadiosity, RadiosityAlbedo) {
   options.paths_per_pixel = 9;
   const double albedo = albedo_psnr(analyse(options).analysis().albedo.albedo_coverage, folder());
   std::printf("[ figures  ] %s radiosity albedo PSNR %.2f dB\n", GetParam().c_str(), albedo);
-  EXPECT_GE(albedo, GetParam() == "outdoor" ? 32.2 : 27.2);
+  const double least = GetParam() == "outdoor" ? 33.0 : GetParam() == "bookcase" ? 27.0 : 32.0;
+  EXPECT_GE(albedo, least);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceSceneRadiosity, testing::Values("outdoor", "bookcase"));
+INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceSceneRadiosity, testing::Values("outdoor", "bookcase", "studio"));
 
 }  // namespace

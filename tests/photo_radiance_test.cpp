@@ -1,6 +1,7 @@
 // Light that bounces many times, and light read from the photo:
 // - a closed room keeps the light of every bounce (no cut after a few:
-//   Russian roulette ends the paths);
+//   Russian roulette ends the paths), and a probe inside it shows no distant
+//   environment;
 // - PhotoRadiance gives the photo's pixel for a point the camera sees whole,
 //   and nothing for a point hidden, seen from its other side, or clipped.
 #include "analysis/photo_radiance.h"
@@ -9,6 +10,8 @@
 
 #include <memory>
 
+#include "analysis/probe_cleanup.h"
+#include "analysis/strategy.h"
 #include "core/sampling.h"
 #include "render/gbuffer.h"
 #include "render/integrator.h"
@@ -73,6 +76,29 @@ TEST(ClosedRoom, KeepsTheLightOfEveryBounce) {
   }
   const double area = 6.0 * 4.0;
   EXPECT_NEAR(sum / n, lamp.power / ((1.0 - rho) * area), 0.02 * lamp.power / ((1.0 - rho) * area));
+}
+
+// A probe in the middle of the closed room sees its walls everywhere: none of
+// it is distant, and the environment of the analysis is the background,
+// black here, so no bounce samples it (a bounce in a closed room cannot reach
+// anything distant anyway).
+TEST(ClosedRoom, AProbeInsideShowsNoDistantEnvironment) {
+  Scene scene;
+  scene.mesh = closed_cube();
+  const RayScene rays(scene.mesh);
+  Probe probe;
+  probe.image = Image(64, 32, Vec3(0.4f, 0.3f, 0.2f));  // the walls, as the probe saw them
+  probe.position = Vec3(0.1f, 0.0f, -0.2f);
+  EXPECT_FALSE(remove_local_geometry_from_probe(probe, rays));
+  scene.probes = {probe};
+  Light lamp;
+  lamp.type = LightType::point;
+  lamp.position = Vec3(0.3f, 0.2f, 0.5f);
+  scene.lights = {lamp};
+  for (Strategy strategy : {Strategy::combined, Strategy::probe})
+    EXPECT_TRUE(strategy_environment(scene, rays, strategy).is_black()) << to_string(strategy);
+  scene.background = Vec3(0.1f, 0.1f, 0.1f);
+  EXPECT_EQ(strategy_environment(scene, rays, Strategy::combined).radiance(nullptr, Vec3::UnitZ()), scene.background);
 }
 
 // A camera 2 m above the floor z = 0, looking down, and a small tile at

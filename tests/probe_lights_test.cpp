@@ -1,15 +1,16 @@
 // Finding the principal lights in light probes: a synthetic probe with a known
 // lamp, and the lamp and sun of the reference scenes (skipped where absent).
+#include "analysis/probe_lights.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <filesystem>
 
 #include "analysis/probe_cleanup.h"
-#include "analysis/probe_lights.h"
 #include "io/scene_io.h"
-#include "render/ray_scene.h"
 #include "reference_scenes.h"
+#include "render/ray_scene.h"
 
 namespace fs = std::filesystem;
 using namespace relight;
@@ -120,7 +121,7 @@ TEST(ProbeCleanup, PixelsThatShowAnyGeometryTakeTheFillAndTheRestStay) {
   std::vector<float> coverage;
   const Probe raw = probe_over_a_floor(floor, coverage);
   const Vec3 fill(0.3f, 0.4f, 0.5f);
-  const Probe cleaned = remove_local_geometry_from_probe(raw, floor, fill);
+  const Probe cleaned = remove_local_geometry_from_probe(raw, floor, fill).value();
   int mixed = 0;
   for (size_t i = 0; i < coverage.size(); ++i) {
     if (coverage[i] == 0.0f) {
@@ -139,7 +140,7 @@ TEST(ProbeCleanup, WithoutAFillTheSkyFillsWhatTheFloorHid) {
   const TriangleMesh mesh = floor_below_origin();
   const RayScene floor(mesh);
   std::vector<float> coverage;
-  const Probe cleaned = remove_local_geometry_from_probe(probe_over_a_floor(floor, coverage), floor);
+  const Probe cleaned = remove_local_geometry_from_probe(probe_over_a_floor(floor, coverage), floor).value();
   for (size_t i = 0; i < coverage.size(); ++i)
     EXPECT_NEAR(cleaned.image.pixels[i].maxCoeff(), 1.0f, 1e-5f) << "pixel " << i << ", " << coverage[i] << " floor";
 }
@@ -155,7 +156,7 @@ TEST_P(ReferenceProbe, ImpliesTheLightsTruePower) {
   const RayScene rays(scene.mesh);
   const Light& light = scene.lights.at(0);
   for (const Probe& raw : scene.probes) {
-    const Probe probe = remove_local_geometry_from_probe(raw, rays);
+    const Probe probe = remove_local_geometry_from_probe(raw, rays).value();
     const auto seen = locate_light_in_probe(probe, light);
     ASSERT_TRUE(seen) << raw.path;
     const auto emission = emission_from_probe(probe, light, *seen);

@@ -79,6 +79,9 @@ constexpr int kResidualBlock = 8;
 constexpr int kResidualPathsDivisor = 4;  // the render back takes paths_per_pixel / this
 constexpr float kLargeResidual = 0.05f;   // above: warn
 constexpr int kProbeAlbedoPaths = 16;     // per probe pixel, for the albedo of what only a probe shows
+constexpr int kBouncePathsDivisor = 2;    // with the photo's radiance: the renders before the closing pass
+constexpr int kMinBouncePaths = 32;       // take paths_per_pixel / this, but no fewer than kMinBouncePaths
+constexpr int kPhotoRadiancePasses = 1;   // with the photo's radiance: interreflection passes
 
 float residual_of(const Image& photo, const Image& albedo, const Image& illumination,
                   const std::vector<float>& coverage) {
@@ -107,9 +110,8 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   check_strategy(scene, options.strategy);
   Analysis result;
   result.options = options;
-  // The photo's radiance serves the path tracer's interreflection only.
-  if (!options.interreflection || options.method != AnalysisMethod::path)
-    result.options.bounce_source = BounceSource::albedo;
+  // The photo's radiance serves the interreflection.
+  if (!options.interreflection) result.options.bounce_source = BounceSource::albedo;
   result.coverage = gbuffer.coverage();
   const Lighting lighting = strategy_lighting(scene, rays, options.strategy);
   IntegratorOptions integrator_options;
@@ -131,12 +133,21 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   // with the photo's radiance where `known` gives it).
   const auto render_with = [&](const SurfaceAlbedo& albedo, const KnownRadiance* known,
                                const IlluminationOptions& pixel_options, const std::string& label) {
-    if (radiosity) return radiosity->render(albedo);
+    if (radiosity) return radiosity->render(albedo, known);
     const Integrator integrator(rays, lighting, &albedo, integrator_options, known);
     return render_illumination(gbuffer, scene.camera, integrator, pixel_options, progress, label);
   };
+  // With the photo's radiance, the renders before the closing pass only
+  // give the albedo the closing pass's paths bounce off, and they average
+  // its noise over the hemisphere: half the paths do, but no fewer than
+  // kMinBouncePaths (photo / noisy illumination is biased up where the
+  // noise is large, and that bias does not average out).
+  IlluminationOptions bounce_options = illumination_options(options);
+  if (photo_radiance)
+    bounce_options.paths_per_pixel =
+        std::max(std::min(options.paths_per_pixel, kMinBouncePaths), options.paths_per_pixel / kBouncePathsDivisor);
   const auto render = [&](const SurfaceAlbedo& albedo, const std::string& label) {
-    return render_with(albedo, photo_radiance.get(), illumination_options(options), label);
+    return render_with(albedo, photo_radiance.get(), bounce_options, label);
   };
 
   // Before any albedo is known, the surfaces the photo does not show reflect
@@ -165,7 +176,11 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     return photo_radiance->probe_albedo(integrator, wanted, kProbeAlbedoPaths, options.seed);
   };
   result.albedo.unseen_triangles = unseen_triangles(PhotoAlbedo(scene.camera, gbuffer, bounce, result.albedo.mean));
-  for (int it = 0; options.interreflection && it < options.max_iterations; ++it) {
+  // With the photo's radiance one pass puts that albedo on what only the
+  // probes show and on the pixels the photo's radiance is not read from;
+  // the closing pass then divides the photo in full.
+  const int passes = photo_radiance ? kPhotoRadiancePasses : options.max_iterations;
+  for (int it = 0; options.interreflection && it < passes; ++it) {
     const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, bounce, result.albedo.mean, result.albedo.unseen_triangles);
     IlluminationImages illum = render(bounce_albedo, "interreflection " + std::to_string(it + 1));
     AlbedoImages next = recover_albedo(scene.photo, scene.photo_clipped, illum, gbuffer);

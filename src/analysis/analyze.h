@@ -46,7 +46,7 @@ struct AnalysisOptions {
   bool interreflection = true;
   BounceSource bounce_source = BounceSource::photo;  // with interreflection on, --method path
   bool denoise = true;                                // filter the environment + interreflection part of each render
-  int max_iterations = 4;                             // interreflection re-renders at most
+  int max_iterations = 4;                             // interreflection re-renders at most (bounce source albedo)
   float tolerance = 0.005f;                           // stop when the mean albedo change is below this
   // With method radiosity, per node (paths_per_pixel is the path tracer's):
   int node_samples = 64;  // for the light from the lights and the environment

@@ -180,14 +180,19 @@ class LightingFit {
         bounce_albedo_(gbuffer.width(), gbuffer.height(), Vec3::Ones()) {
     result.scene = scene;
     result.background_before = scene.background;
-    for (const Probe& p : scene.probes) distant_.push_back(remove_local_geometry_from_probe(p, rays));
+    for (const Probe& p : scene.probes) {
+      std::optional<Probe> distant = remove_local_geometry_from_probe(p, rays);
+      if (distant) distant_.push_back(*distant);
+      // One that sees only the geometry still shows the lights.
+      light_probes_.push_back(distant ? std::move(*distant) : p);
+    }
     for (size_t i = 0; i < scene.lights.size(); ++i) {
       const Light& light = scene.lights[i];
       if (!light.enabled) continue;
       Basis b;
       b.emission = light.emission();
       FittedLight report{light.name, light.emission(), light.emission(), "shadows"};
-      if (const auto seen = emission_seen_by_probes(rays, distant_, light)) {
+      if (const auto seen = emission_seen_by_probes(rays, light_probes_, light)) {
         b.known = true;
         b.emission = *seen;
         report.source = "probe";
@@ -320,7 +325,8 @@ class LightingFit {
   const GBuffer& gbuffer_;
   const FitOptions& options_;
   Progress& progress_;
-  std::vector<Probe> distant_;       // the probes without the modelled geometry
+  std::vector<Probe> distant_;       // the probes without the modelled geometry (those that see past it)
+  std::vector<Probe> light_probes_;  // each probe, without the geometry where it sees past it
   std::vector<size_t> light_index_;  // basis k is result.scene.lights[light_index_[k]]
   std::vector<Basis> bases_;
   size_t background_ = 0;  // the background's basis

@@ -45,7 +45,8 @@ void fill_holes(Image& img, std::vector<uint8_t>& hole, const std::vector<uint8_
 
 }  // namespace
 
-Probe remove_local_geometry_from_probe(const Probe& probe, const RayScene& rays, const std::optional<Vec3>& fill) {
+std::optional<Probe> remove_local_geometry_from_probe(const Probe& probe, const RayScene& rays,
+                                                      const std::optional<Vec3>& fill) {
   Probe out = probe;
   const ProbeFrame frame(probe.forward, probe.up);
   const int w = probe.image.width, h = probe.image.height;
@@ -68,7 +69,7 @@ Probe remove_local_geometry_from_probe(const Probe& probe, const RayScene& rays,
       }
       known += !hole[i];
     }
-  if (known == 0) return out;  // the probe sees only geometry: nothing distant to keep
+  if (known == 0) return std::nullopt;
   if (fill) {
     for (size_t i = 0; i < hole.size(); ++i)
       if (hole[i]) out.image.pixels[i] = *fill;

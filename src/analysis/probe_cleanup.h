@@ -20,9 +20,10 @@ namespace relight {
 // given, is the radiance they take (the scene's `background`: the user's
 // estimate of the environment); without, they are filled from the
 // neighbouring environment, ring by ring, which carries the horizon's
-// radiance into the whole lower half.
-Probe remove_local_geometry_from_probe(const Probe& probe, const RayScene& rays,
-                                       const std::optional<Vec3>& fill = std::nullopt);
+// radiance into the whole lower half. A probe that shows the geometry in
+// every direction (inside a closed room) shows nothing distant: nullopt.
+std::optional<Probe> remove_local_geometry_from_probe(const Probe& probe, const RayScene& rays,
+                                                      const std::optional<Vec3>& fill = std::nullopt);
 
 // The probe's mean radiance over all directions (solid-angle weighted): what
 // a constant `background` standing for it should be.

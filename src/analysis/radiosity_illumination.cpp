@@ -77,9 +77,14 @@ RadiosityIllumination::RadiosityIllumination(const Scene& scene, const RayScene&
   background_ = render_background(gbuffer, scene.camera, environment);
 }
 
-IlluminationImages RadiosityIllumination::render(const SurfaceAlbedo& albedo) {
+IlluminationImages RadiosityIllumination::render(const SurfaceAlbedo& albedo, const KnownRadiance* known) {
   scene_gather_->set_albedo(albedo);
   view_gather_->set_albedo(albedo);
+  if (known != known_) {
+    scene_gather_->set_known(known);
+    view_gather_->set_known(known);
+    known_ = known;
+  }
   std::vector<Vec3> scene_irradiance;
   const int bounces = solve_radiosity(*scene_gather_, options_, scene_irradiance);
   spdlog::debug("radiosity: {} bounces between scene nodes", bounces);

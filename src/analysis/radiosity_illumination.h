@@ -37,8 +37,9 @@ class RadiosityIllumination {
   RadiosityIllumination(const RadiosityIllumination&) = delete;
   RadiosityIllumination& operator=(const RadiosityIllumination&) = delete;
 
-  // The illumination with `albedo` on the surfaces light bounces off.
-  IlluminationImages render(const SurfaceAlbedo& albedo);
+  // The illumination with `albedo` on the surfaces light bounces off, and
+  // with the radiance `known` gives where it gives one (the photo's).
+  IlluminationImages render(const SurfaceAlbedo& albedo, const KnownRadiance* known = nullptr);
 
  private:
   const GBuffer& gbuffer_;
@@ -48,7 +49,8 @@ class RadiosityIllumination {
   std::unique_ptr<RayScene> view_rays_, scene_rays_;
   std::unique_ptr<RadiosityGather> view_gather_, scene_gather_;
   Image background_;
-  Image direct_;  // per pixel, from the lights (empty when the nodes carry it)
+  const KnownRadiance* known_ = nullptr;  // what the gathers' hits were last given
+  Image direct_;                          // per pixel, from the lights (empty when the nodes carry it)
 };
 
 }  // namespace relight

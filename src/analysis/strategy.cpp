@@ -55,10 +55,14 @@ Environment strategy_environment(const Scene& scene, const RayScene& rays, Strat
   const std::optional<Vec3> unseen =
       scene.background.isZero() ? std::nullopt : std::optional<Vec3>(scene.background);
   std::vector<Probe> cleaned;
-  for (const auto& p : scene.probes) {
-    Probe distant = remove_local_geometry_from_probe(p, rays, unseen);
-    cleaned.push_back(strategy == Strategy::combined ? remove_lights_from_probe(distant, scene.lights) : distant);
-  }
+  for (const auto& p : scene.probes)
+    if (std::optional<Probe> distant = remove_local_geometry_from_probe(p, rays, unseen))
+      cleaned.push_back(strategy == Strategy::combined ? remove_lights_from_probe(*distant, scene.lights)
+                                                       : std::move(*distant));
+  // Probes that all see only the geometry (a closed room) leave the
+  // background, black or not: no path tracer's bounce then samples an
+  // environment no ray can reach.
+  if (cleaned.empty()) return Environment::constant(scene.background);
   return Environment::from_probes(cleaned);
 }
 

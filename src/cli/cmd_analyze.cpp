@@ -92,7 +92,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--bounce-source", args->bounce_source,
-                  "with interreflection, --method path: light bounced off a surface the photo or a probe shows is the "
+                  "with interreflection: light bounced off a surface the photo or a probe shows is the "
                   "radiance shown there (photo), or the albedo times its rendered light, iterated (albedo)")
       ->check(CLI::IsMember({"photo", "albedo"}))
       ->capture_default_str();

@@ -92,6 +92,14 @@ Distribution1D::Distribution1D(std::vector<float> weights) : weights_(std::move(
     cdf_[i + 1] = float(acc);
   }
   total_ = float(acc);
+  const int n = int(weights_.size());
+  guide_.resize(weights_.size());
+  int bin = 0;
+  for (int k = 0; k < n; ++k) {
+    const float target = float(k) / float(n) * total_;
+    while (bin + 1 < n && cdf_[size_t(bin) + 1] <= target) ++bin;
+    guide_[size_t(k)] = bin;
+  }
 }
 
 int Distribution1D::sample(float u, float& offset, float& pdf_out) const {
@@ -103,8 +111,10 @@ int Distribution1D::sample(float u, float& offset, float& pdf_out) const {
     return bin;
   }
   const float target = u * total_;
-  const auto it = std::upper_bound(cdf_.begin() + 1, cdf_.end(), target);
-  int bin = std::clamp(int(it - cdf_.begin()) - 1, 0, n - 1);
+  // The first bin whose cdf passes target (upper_bound), from the guide on.
+  int bin = guide_[size_t(std::clamp(int(u * float(n)), 0, n - 1))];
+  while (bin > 0 && cdf_[size_t(bin)] > target) --bin;  // u * n and the guide's k / n round apart
+  while (bin + 1 < n && cdf_[size_t(bin) + 1] <= target) ++bin;
   while (bin > 0 && weights_[bin] == 0.0f) --bin;  // never land in an empty bin
   const float w = weights_[bin];
   offset = w > 0.0f ? std::clamp((target - cdf_[bin]) / w, 0.0f, 0x1.fffffep-1f) : 0.5f;

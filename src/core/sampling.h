@@ -60,6 +60,10 @@ class Distribution1D {
 
  private:
   std::vector<float> weights_, cdf_;
+  // guide_[k]: the bin holding u = k / size(), where the search for any u in
+  // [k, k + 1) / size() starts (Chen and Asau's guide table): a short forward
+  // scan instead of a binary search's cache misses over a probe-sized cdf.
+  std::vector<int> guide_;
   float total_ = 0.0f;
 };
 

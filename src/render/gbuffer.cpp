@@ -30,6 +30,12 @@ GBuffer::GBuffer(const Camera& camera, const RayScene& scene, int samples_per_pi
       coverage_[size_t(y) * width_ + x] = float(hits) / float(spp_);
     }
   });
+  central_depth_.resize(coverage_.size());
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x) {
+      const GBufferSample& c = central(x, y);
+      central_depth_[size_t(y) * width_ + x] = {c.hit ? c.surface.prim : kNoPrim, c.surface.distance};
+    }
   bool any = false;
   for (float c : coverage_) any |= c > 0.0f;
   if (!any)
@@ -64,10 +70,10 @@ std::optional<GBuffer::Pixel> GBuffer::pixel_showing(const Camera& camera, const
   if (!pos) return std::nullopt;
   const int x = int(std::floor(pos->x())), y = int(std::floor(pos->y()));
   if (x < 0 || y < 0 || x >= width_ || y >= height_) return std::nullopt;
-  const GBufferSample& s = central(x, y);
-  if (!s.hit) return std::nullopt;
+  const CentralDepth& c = central_depth_[size_t(y) * width_ + x];
+  if (c.prim == kNoPrim) return std::nullopt;
   const float dist = to_camera.norm();
-  if (s.surface.prim != p.prim && std::abs(s.surface.distance - dist) > 0.01f * dist) return std::nullopt;
+  if (c.prim != p.prim && std::abs(c.distance - dist) > 0.01f * dist) return std::nullopt;
   return Pixel{x, y};
 }
 

@@ -61,6 +61,15 @@ class GBuffer {
   uint64_t seed_;
   std::vector<GBufferSample> samples_;
   std::vector<float> coverage_;
+  // The centre-most sample's triangle and distance, kept apart: pixel_showing
+  // reads them at random pixels for every bounce of every path, and the
+  // samples' 9 x 48 bytes per pixel miss the caches.
+  struct CentralDepth {
+    uint32_t prim;  // kNoPrim where the sample sees no geometry
+    float distance;
+  };
+  static constexpr uint32_t kNoPrim = 0xffffffffu;
+  std::vector<CentralDepth> central_depth_;
 };
 
 }  // namespace relight

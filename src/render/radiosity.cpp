@@ -228,6 +228,7 @@ RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, c
   hits_.reserve(first_.back());
   for (auto& h : node_hits) hits_.insert(hits_.end(), h.begin(), h.end());
   hit_albedo_.assign(hits_.size(), Vec3::Ones());
+  hit_known_.assign(hits_.size(), std::nullopt);
   if (lights_at_hits) {
     hit_lights_.reserve(hits_.size());
     for (auto& l : node_hit_lights) hit_lights_.insert(hit_lights_.end(), l.begin(), l.end());
@@ -238,6 +239,15 @@ void RadiosityGather::set_albedo(const SurfaceAlbedo& albedo) {
   tbb::parallel_for(size_t(0), hits_.size(), [&](size_t i) {
     const Hit& h = hits_[i];
     hit_albedo_[i] = albedo.at(scene_.point_at(h.triangle, Vec3(1.0f - h.b1 - h.b2, h.b1, h.b2), h.back));
+  });
+}
+
+void RadiosityGather::set_known(const KnownRadiance* known) {
+  tbb::parallel_for(size_t(0), hits_.size(), [&](size_t i) {
+    const Hit& h = hits_[i];
+    std::optional<Vec3> radiance;
+    if (known) radiance = known->at(scene_.point_at(h.triangle, Vec3(1.0f - h.b1 - h.b2, h.b1, h.b2), h.back));
+    hit_known_[i] = radiance ? std::optional<Vec3>(*radiance * kPi) : std::nullopt;
   });
 }
 
@@ -257,6 +267,10 @@ std::vector<Vec3> RadiosityGather::gather(std::span<const Vec3> scene_irradiance
   tbb::parallel_for(size_t(0), direct_.size(), [&](size_t n) {
     Vec3 sum = Vec3::Zero();
     for (uint32_t i = first_[n]; i < first_[n + 1]; ++i) {
+      if (hit_known_[i]) {
+        sum += *hit_known_[i];
+        continue;
+      }
       const Hit& h = hits_[i];
       Vec3 e = scene_.interpolate(scene_irradiance, h.triangle, Vec3(1.0f - h.b1 - h.b2, h.b1, h.b2), h.back);
       if (!hit_lights_.empty()) e += hit_lights_[i];

@@ -110,6 +110,10 @@ class RadiosityGather {
 
   // The albedo where each ray hit: call before gather() with another albedo.
   void set_albedo(const SurfaceAlbedo& albedo);
+  // The radiance known where rays hit (the photo's, where it shows the hit:
+  // inverse global illumination), which those hits then bring whatever the
+  // albedo and the nodes' irradiance; nullptr: none known.
+  void set_known(const KnownRadiance* known);
   // Each node's irradiance: its direct light plus the light of the rays' hit
   // points, from the scene nodes' irradiance `scene_irradiance`, of which
   // `scene_lights` is straight from the lights (needed with lights_at_hits).
@@ -132,7 +136,8 @@ class RadiosityGather {
   std::vector<uint32_t> first_;  // node n's hits: [first_[n], first_[n + 1])
   std::vector<Hit> hits_;
   std::vector<Vec3> hit_albedo_;
-  std::vector<Vec3> hit_lights_;  // with lights_at_hits: irradiance from the lights at each hit
+  std::vector<std::optional<Vec3>> hit_known_;  // pi x the known radiance at each hit, where known
+  std::vector<Vec3> hit_lights_;                // with lights_at_hits: irradiance from the lights at each hit
 };
 
 // The scene's irradiance at its nodes with the albedo `albedo` on every
