@@ -184,6 +184,30 @@ TEST(Distribution1D, IsTheInverseCdf) {
   EXPECT_EQ(dist.sample(0x1.fffffep-1f, offset, pdf), 1);
 }
 
+// The guide table only shortens the search: every u, those on the guide's
+// k / n boundaries included, lands in the bin the inverse cdf gives.
+TEST(Distribution1D, TheGuideTableGivesTheInverseCdfsBin) {
+  const int n = 1000;
+  std::vector<float> weights(n);
+  Rng init(5, 0);
+  for (int i = 0; i < n; ++i) weights[i] = i % 5 == 0 ? 0.0f : std::pow(init.uniform(), 4.0f) * 100.0f;
+  weights[n / 2] = 5e4f;  // one bin taking a third of the total
+  const Distribution1D dist(weights);
+  std::vector<double> cdf(n + 1, 0.0);
+  for (int i = 0; i < n; ++i) cdf[i + 1] = cdf[i] + weights[i];
+  Rng rng(9, 0);
+  for (int t = 0; t < 20000; ++t) {
+    const float u = t % 2 ? rng.uniform() : std::min(float(t / 2 % n) / n, 0x1.fffffep-1f);
+    float offset, pdf;
+    const int bin = dist.sample(u, offset, pdf);
+    const double target = double(u) * cdf[n];
+    ASSERT_GT(weights[bin], 0.0f) << u;
+    // The bin's cdf range holds u, within float rounding of the cdf.
+    EXPECT_LE(cdf[bin], target + 1e-4 * cdf[n]) << u;
+    EXPECT_GE(cdf[bin + 1], target - 1e-4 * cdf[n]) << u;
+  }
+}
+
 TEST(Distribution1D, NeverLandsInEmptyBinsEvenAtTheEnds) {
   const Distribution1D dist({0, 0, 2, 0, 0});
   float offset, pdf;
