@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "analysis/analyze.h"
+#include "analysis/color_chart.h"
 #include "analysis/strategy.h"
 #include "core/error.h"
 #include "io/response_curve.h"
@@ -544,6 +545,92 @@ TEST(FitWithReference, TheReferenceAlbedoComesBack) {
   EXPECT_NEAR(mean.x(), 0.5f, 0.05f);
   EXPECT_NEAR(mean.y(), 0.4f, 0.04f);
   EXPECT_NEAR(mean.z(), 0.3f, 0.03f);
+}
+
+// The chart's patches lie in its cells in reading order, each the middle
+// 40 % of its cell, with the published colours linearised.
+TEST(ColorChecker, PatchesFollowTheChartsCorners) {
+  const std::vector<ReferencePatch> flat = colorchecker_patches({{0, 0}, {600, 0}, {600, 400}, {0, 400}});
+  ASSERT_EQ(flat.size(), 24u);
+  const auto centre = [](const ReferencePatch& p) {
+    Vec2 c = Vec2::Zero();
+    for (const Vec2& v : p.polygon) c += v;
+    return Vec2(c / float(p.polygon.size()));
+  };
+  EXPECT_NEAR((centre(flat[0]) - Vec2(50, 50)).norm(), 0.0f, 1e-3f);
+  EXPECT_NEAR((centre(flat[23]) - Vec2(550, 350)).norm(), 0.0f, 1e-3f);
+  EXPECT_NEAR(flat[0].polygon[1].x() - flat[0].polygon[0].x(), 40.0f, 1e-3f);
+  EXPECT_NEAR(flat[18].albedo.x(), srgb_decode(243.0f / 255.0f), 1e-6f);  // white
+  EXPECT_NEAR(flat[23].albedo.y(), srgb_decode(52.0f / 255.0f), 1e-6f);   // black
+  EXPECT_GT(flat[14].albedo.x(), 3.0f * flat[14].albedo.y());              // red
+  // Seen in perspective (the far edge shorter), the near row's patches are
+  // the wider ones, and every patch stays inside the chart's outline.
+  const std::vector<Vec2> corners = {{100, 100}, {500, 100}, {560, 400}, {40, 400}};
+  const std::vector<ReferencePatch> seen = colorchecker_patches(corners);
+  const auto width = [](const ReferencePatch& p) { return p.polygon[1].x() - p.polygon[0].x(); };
+  EXPECT_GT(width(seen[18]), width(seen[0]));
+  for (const ReferencePatch& p : seen)
+    for (const Vec2& v : p.polygon) {
+      EXPECT_GT(v.y(), 100.0f);
+      EXPECT_LT(v.y(), 400.0f);
+    }
+}
+
+// A ColorChecker on the floor of a photo taken at an unknown exposure and
+// white balance: `fit` scales the lights so that the analysis recovers the
+// chart's colours on its patches.
+TEST(FitWithReference, AColorCheckerFixesExposureAndWhiteBalance) {
+  SceneFolder f("fit_colorchecker");
+  f.scene["camera"] = {{"position", {0, -5, 2}}, {"look_at", {0, -1, 0}}, {"up", {0, 0, 1}}, {"vfov_deg", 40}};
+  f.replace_photo(Image(240, 160, Vec3(0.3f, 0.3f, 0.3f)));
+  f.write_json();
+  // The light the floor gets, from an analysis of the grey photo.
+  ASSERT_EQ(run_cli({"analyze", (f / "scene.json").string(), "-o", (f / "grey").string(), "--spp", "16"}).status, 0);
+  const Image light = read_image(f / "grey" / "illumination.exr");
+  // The photo: the chart's colours x that light x an exposure and white
+  // balance nobody told the scene.
+  const std::vector<Vec2> corners = {{40, 95}, {200, 95}, {210, 150}, {30, 150}};
+  const std::vector<ReferencePatch> patches = colorchecker_patches(corners);
+  const Vec3 exposure(0.5f, 0.4f, 0.3f);
+  Image photo(240, 160, Vec3::Constant(0.3f));
+  for (int y = 0; y < 160; ++y)
+    for (int x = 0; x < 240; ++x) {
+      Vec3 albedo = Vec3::Constant(0.3f);
+      for (const ReferencePatch& p : patches) {
+        // The whole cell takes the patch's colour: the patch polygon grown 2.5x about its centre.
+        Vec2 c = Vec2::Zero();
+        for (const Vec2& v : p.polygon) c += v / 4.0f;
+        std::vector<Vec2> cell;
+        for (const Vec2& v : p.polygon) cell.push_back(c + 2.5f * (v - c));
+        if (inside_polygon(cell, Vec2(x + 0.5f, y + 0.5f))) albedo = p.albedo;
+      }
+      photo.at(x, y) = albedo.cwiseProduct(light.at(x, y)).cwiseProduct(exposure);
+    }
+  f.replace_photo(photo);
+  json chart = json::array();
+  for (const Vec2& c : corners) chart.push_back({c.x(), c.y()});
+  f.scene["reference"] = {{"colorchecker", chart}};
+  f.write_json();
+  const auto r = run_cli({"fit", (f / "scene.json").string(), "-o", (f / "fitted.json").string(), "--spp", "16"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto a = run_cli({"analyze", (f / "fitted.json").string(), "-o", (f / "analysis").string(), "--spp", "16"});
+  ASSERT_EQ(a.status, 0) << a.err;
+  const Image albedo = read_image(f / "analysis" / "albedo_surface.exr");
+  double error = 0.0;
+  int n = 0;
+  for (const ReferencePatch& p : patches) {
+    Vec3 sum = Vec3::Zero();
+    int pixels = 0;
+    for (int y = 0; y < 160; ++y)
+      for (int x = 0; x < 240; ++x)
+        if (inside_polygon(p.polygon, Vec2(x + 0.5f, y + 0.5f))) sum += albedo.at(x, y), ++pixels;
+    ASSERT_GT(pixels, 0);
+    const Vec3 mean = sum / float(pixels);
+    error += (mean - p.albedo).cwiseAbs().sum() / 3.0;
+    ++n;
+  }
+  std::printf("[ figures  ] ColorChecker after fit: mean absolute albedo error %.4f over %d patches\n", error / n, n);
+  EXPECT_LT(error / n, 0.02);
 }
 
 TEST(ProbeFromPhotoCommand, WritesTheCroppedBall) {

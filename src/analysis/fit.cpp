@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/color_chart.h"
 #include "analysis/probe_cleanup.h"
 #include "analysis/probe_lights.h"
 #include "analysis/surface_albedo.h"
@@ -42,17 +43,6 @@ struct PixelPair {
 // lamp at 320x240 gives 2 to 55 of them a round, and they put the background
 // at 1.5 to 3 times its value. A round with fewer than this solves nothing.
 constexpr size_t kMinEdgePairs = 200;
-
-// Even-odd rule: whether p lies inside the polygon.
-bool inside(const std::vector<Vec2>& polygon, const Vec2& p) {
-  bool in = false;
-  for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vec2 &a = polygon[i], &b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-      in = !in;
-  }
-  return in;
-}
 
 // Nearby pixels (a few apart) on one plane, fully covered, where the
 // share of the lights in the illumination differs: across a shadow edge.
@@ -249,26 +239,38 @@ class LightingFit {
     unseen_ = albedo.mean;
   }
 
-  // The photo's exposure and white balance from the surface of known albedo
+  // The photo's exposure and white balance from the surfaces of known albedo
   // (Scene::reference): every emission scaled, per channel, so that the
-  // albedo recovered on it is the one given (albedo and light trade off:
-  // photo = albedo x light).
+  // albedo recovered on them is the one given (albedo and light trade off:
+  // photo = albedo x light). With a chart's patches, the scale per channel
+  // is the least-squares one over every pixel of every patch.
   void apply_reference() {
     if (!scene_.reference) return;
-    Vec3 sum = Vec3::Zero();
-    size_t n = 0;
-    for (int y = 0; y < gbuffer_.height(); ++y)
-      for (int x = 0; x < gbuffer_.width(); ++x)
-        if (gbuffer_.coverage(x, y) >= 1.0f && inside(scene_.reference->polygon, Vec2(x + 0.5f, y + 0.5f)))
-          sum += bounce_albedo_.at(x, y), ++n;
-    if (n == 0 || sum.minCoeff() <= 0.0f) {
-      spdlog::warn(
-          "{}: /reference: the polygon covers no lit pixel of the geometry in view; the overall scale is "
-          "kept",
-          scene_.path.string());
+    Vec3 recovered_x_known = Vec3::Zero(), known_squared = Vec3::Zero();
+    size_t pixels = 0, patches_seen = 0;
+    const std::vector<ReferencePatch> patches = reference_patches(*scene_.reference);
+    for (const ReferencePatch& patch : patches) {
+      size_t n = 0;
+      for (int y = 0; y < gbuffer_.height(); ++y)
+        for (int x = 0; x < gbuffer_.width(); ++x)
+          if (gbuffer_.coverage(x, y) >= 1.0f && inside_polygon(patch.polygon, Vec2(x + 0.5f, y + 0.5f))) {
+            recovered_x_known += bounce_albedo_.at(x, y).cwiseProduct(patch.albedo);
+            known_squared += patch.albedo.cwiseProduct(patch.albedo);
+            ++n;
+          }
+      pixels += n;
+      patches_seen += n > 0;
+    }
+    const std::string what = patches.size() > 1 ? "the chart's patches cover" : "the polygon covers";
+    if (pixels == 0 || recovered_x_known.minCoeff() <= 0.0f) {
+      spdlog::warn("{}: /reference: {} no lit pixel of the geometry in view; the overall scale is kept",
+                   scene_.path.string(), what);
       return;
     }
-    const Vec3 ratio = (sum / float(n)).cwiseQuotient(scene_.reference->albedo);
+    if (patches.size() > 1)
+      spdlog::info("{}: /reference: {} of the chart's {} patches on the geometry in view, {} pixels",
+                   scene_.path.string(), patches_seen, patches.size(), pixels);
+    const Vec3 ratio = recovered_x_known.cwiseQuotient(known_squared);
     for (Basis& b : bases_) b.emission = b.emission.cwiseProduct(ratio);
     for (Vec3& a : bounce_albedo_.pixels) a = a.cwiseQuotient(ratio);
     unseen_ = unseen_.cwiseQuotient(ratio);

@@ -212,17 +212,29 @@ json light_to_json(const Light& l) {
   return j;
 }
 
+// `count` (or, with 0, three or more) [x, y] photo pixel positions.
+std::vector<Vec2> parse_pixel_positions(const JsonReader& r, const json& v, const std::string& ptr, size_t count) {
+  if (!v.is_array() || (count ? v.size() != count : v.size() < 3))
+    r.fail(ptr, count ? "expected " + std::to_string(count) + " [x, y] photo pixel positions"
+                      : std::string("expected three or more [x, y] photo pixel positions"));
+  std::vector<Vec2> points;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const std::string child = json_child(ptr, i);
+    if (!v[i].is_array() || v[i].size() != 2) r.fail(child, "expected [x, y] in photo pixels");
+    points.emplace_back(r.number(v[i][0], child + "/0"), r.number(v[i][1], child + "/1"));
+  }
+  return points;
+}
+
 AlbedoReference parse_reference(const JsonReader& r, const json& v) {
   r.expect_object(v, "/reference");
   AlbedoReference ref;
-  const json& polygon = r.required(v, "/reference", "polygon");
-  if (!polygon.is_array() || polygon.size() < 3)
-    r.fail("/reference/polygon", "expected three or more [x, y] photo pixel positions");
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    const std::string ptr = json_child("/reference/polygon", i);
-    if (!polygon[i].is_array() || polygon[i].size() != 2) r.fail(ptr, "expected [x, y] in photo pixels");
-    ref.polygon.emplace_back(r.number(polygon[i][0], ptr + "/0"), r.number(polygon[i][1], ptr + "/1"));
+  if (const json* chart = r.optional(v, "colorchecker")) {
+    ref.colorchecker = parse_pixel_positions(r, *chart, "/reference/colorchecker", 4);
+    r.warn_unknown_keys(v, "/reference", {"colorchecker"});
+    return ref;
   }
+  ref.polygon = parse_pixel_positions(r, r.required(v, "/reference", "polygon"), "/reference/polygon", 0);
   const json& albedo = r.required(v, "/reference", "albedo");
   const std::string ptr = "/reference/albedo";
   ref.albedo = albedo.is_number() ? Vec3::Constant(r.number(albedo, ptr, 0.0f, 1.0f)) : r.color(albedo, ptr);
@@ -324,9 +336,15 @@ std::string scene_to_json(const Scene& scene, const fs::path& folder) {
   for (const auto& l : scene.lights) j["lights"].push_back(light_to_json(l));
   j["background"] = v3(scene.background);
   if (scene.reference) {
-    json polygon = json::array();
-    for (const Vec2& p : scene.reference->polygon) polygon.push_back({p.x(), p.y()});
-    j["reference"] = {{"polygon", polygon}, {"albedo", v3(scene.reference->albedo)}};
+    const auto positions = [](const std::vector<Vec2>& points) {
+      json out = json::array();
+      for (const Vec2& p : points) out.push_back({p.x(), p.y()});
+      return out;
+    };
+    const AlbedoReference& ref = *scene.reference;
+    j["reference"] = ref.colorchecker.empty()
+                         ? json{{"polygon", positions(ref.polygon)}, {"albedo", v3(ref.albedo)}}
+                         : json{{"colorchecker", positions(ref.colorchecker)}};
   }
   if (!scene.probes.empty()) {
     j["probes"] = json::array();
