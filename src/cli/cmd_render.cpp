@@ -21,6 +21,7 @@ namespace {
 struct RenderArgs {
   std::string scene, rig, out, analysis;
   AnalysisOptions options;
+  const CLI::Option* spp = nullptr;  // given or not
   float exposure = 0.0f;
 };
 
@@ -32,7 +33,10 @@ void run_render(const RenderArgs& args, Progress& progress) {
   const std::unique_ptr<AnalysedScene> analysed =
       load_analysed_scene(args.scene, args.analysis, args.options, progress);
   RenderOptions render_options;
-  render_options.paths_per_pixel = args.options.paths_per_pixel;
+  // By default the analysis's paths: with its seed, the render's noise then
+  // follows the analysis's, and the scene's own lights give back the photo.
+  render_options.paths_per_pixel =
+      args.spp->count() ? args.options.paths_per_pixel : analysed->analysis().options.paths_per_pixel;
   render_options.max_bounces = args.options.max_bounces;
   const Image image = render_rig(*analysed, rig, render_options, progress);
   fs::path png = out;
@@ -57,6 +61,9 @@ void add_render_command(CLI::App& app, Action& action) {
                   "an analysis folder from 'relight analyze' to reuse (else the scene is analysed first)");
   cmd->add_option("--exposure", args->exposure, "exposure of the PNG in stops")->capture_default_str();
   add_sampling_options(*cmd, args->options);
+  args->spp = cmd->get_option("--spp")->default_str("")->description(
+      "light paths per pixel (more: less noise, slower); default: the analysis's, with which the scene's own "
+      "lights give back the photo, its noise and all");
   cmd->footer(help_footer(
       "Renders the photo under the rig's lights: the albedo times the new illumination. Writes OUT.exr and a\n"
       "  tone-mapped PNG beside it. Without --analysis the scene is analysed first with the defaults.",
