@@ -37,6 +37,7 @@ camera = scene["camera"]
 near(camera["vfov_deg"], math.degrees(2 * math.atan(18.0 / 35.0 * 240.0 / 320.0)))
 near(camera["position"], [6.0, -5.0, 3.5])
 near(camera["principal_point"], [0.45, 0.5])
+near(camera["aspect"], 320.0 / 240.0)
 forward = [a - b for a, b in zip(camera["look_at"], camera["position"])]
 target = [0.0 - 6.0, 0.0 + 5.0, 0.6 - 3.5]
 norm = math.sqrt(sum(t * t for t in target))

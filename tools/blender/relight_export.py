@@ -89,6 +89,8 @@ def camera_block(scene, metres=1.0):
         "look_at": _vec(position * metres + forward),
         "up": _vec(up),
         "vfov_deg": math.degrees(2.0 * math.atan(tan_half)),
+        # The render's shape: relight refuses a photo of another (cropped to 16:9, say).
+        "aspect": width / height,
     }
     # Lens shift is in units of the fitted side; relight's principal point is a
     # fraction of width and height from the top left.
