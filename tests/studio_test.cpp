@@ -5,6 +5,7 @@
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QLineEdit>
+#include <QListView>
 #include <QMessageBox>
 #include <QMouseEvent>
 #include <QProcess>
@@ -380,6 +381,25 @@ class StudioTest : public QObject {
     window_->undo_stack().undo();
     QVERIFY(document().light(0).enabled);
     QCOMPARE(model.data(model.index(0), Qt::CheckStateRole).toInt(), int(Qt::Checked));
+  }
+
+  void clicking_the_eye_icon_toggles_the_light() {
+    auto* list = window_->findChild<QListView*>("light_list");
+    QVERIFY(list);
+    const auto* eye = qobject_cast<const EyeToggleDelegate*>(list->itemDelegate());
+    QVERIFY(eye);
+    const QModelIndex row = list->model()->index(0, 0);
+    const QRect icon = eye->eye_rect(*list, row);
+    QVERIFY(!icon.isEmpty());
+    QVERIFY(document().light(0).enabled);
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, {}, icon.center());
+    QVERIFY(!document().light(0).enabled);
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, {}, icon.center());
+    QVERIFY(document().light(0).enabled);
+    // Beside the eye and the checkbox (on the name) a click selects, and switches nothing.
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, {}, QPoint(icon.right() + 60, icon.center().y()));
+    QVERIFY(document().light(0).enabled);
+    QCOMPARE(window_->undo_stack().count(), 2);
   }
 
   void delete_key_deletes_and_undo_puts_it_back_in_place() {

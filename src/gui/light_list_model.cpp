@@ -1,6 +1,8 @@
 #include "gui/light_list_model.h"
 
+#include <QAbstractItemView>
 #include <QIcon>
+#include <QMouseEvent>
 #include <QPainter>
 #include <QPainterPath>
 #include <QPixmap>
@@ -110,6 +112,29 @@ bool LightListModel::setData(const QModelIndex& index, const QVariant& value, in
 
 Qt::ItemFlags LightListModel::flags(const QModelIndex& index) const {
   return QAbstractListModel::flags(index) | Qt::ItemIsUserCheckable;
+}
+
+QRect EyeToggleDelegate::eye_rect(const QAbstractItemView& view, const QModelIndex& index) const {
+  QStyleOptionViewItem option;
+  option.initFrom(view.viewport());
+  option.widget = &view;
+  option.rect = view.visualRect(index);
+  option.decorationSize = view.iconSize();
+  initStyleOption(&option, index);
+  return view.style()->subElementRect(QStyle::SE_ItemViewItemDecoration, &option, &view);
+}
+
+bool EyeToggleDelegate::editorEvent(QEvent* event, QAbstractItemModel* model, const QStyleOptionViewItem& option,
+                                    const QModelIndex& index) {
+  const auto* view = qobject_cast<const QAbstractItemView*>(option.widget);
+  if (view && event->type() == QEvent::MouseButtonRelease) {
+    const auto* mouse = static_cast<QMouseEvent*>(event);
+    if (mouse->button() == Qt::LeftButton && eye_rect(*view, index).contains(mouse->position().toPoint())) {
+      const bool on = index.data(Qt::CheckStateRole).toInt() == Qt::Checked;
+      return model->setData(index, on ? Qt::Unchecked : Qt::Checked, Qt::CheckStateRole);
+    }
+  }
+  return QStyledItemDelegate::editorEvent(event, model, option, index);
 }
 
 }  // namespace relight::gui

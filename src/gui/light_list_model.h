@@ -2,10 +2,12 @@
 // short description, an eye icon in the light's colour and a checkbox that
 // switches the light on and off. A click on the checkbox does not change the
 // document itself: it asks (enabledToggleRequested) so that the change goes
-// through the undo stack.
+// through the undo stack. EyeToggleDelegate makes a click on the eye do
+// what a click on the checkbox does.
 #pragma once
 
 #include <QAbstractListModel>
+#include <QStyledItemDelegate>
 
 #include "gui/lighting_document.h"
 
@@ -32,6 +34,22 @@ class LightListModel : public QAbstractListModel {
 
  private:
   LightingDocument* document_ = nullptr;
+};
+
+// Draws the rows as QStyledItemDelegate does, and takes a click on a row's
+// eye icon as a click on its checkbox: the eye is the first thing a Blender
+// user clicks to hide a light.
+class EyeToggleDelegate : public QStyledItemDelegate {
+  Q_OBJECT
+
+ public:
+  using QStyledItemDelegate::QStyledItemDelegate;
+  // Where `view` draws the eye of row `index`, in its viewport.
+  QRect eye_rect(const QAbstractItemView& view, const QModelIndex& index) const;
+
+ protected:
+  bool editorEvent(QEvent* event, QAbstractItemModel* model, const QStyleOptionViewItem& option,
+                   const QModelIndex& index) override;
 };
 
 }  // namespace relight::gui

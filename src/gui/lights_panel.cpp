@@ -26,6 +26,7 @@ LightsPanel::LightsPanel(QWidget* parent)
   geometry_->setObjectName("geometry_view");
   list_->setObjectName("light_list");
   list_->setModel(model_);
+  list_->setItemDelegate(new EyeToggleDelegate(list_));
   list_->setIconSize(QSize(20, 20));
   list_->setSpacing(2);
   list_->setFocusPolicy(Qt::NoFocus);  // the keys move lights (geometry view), not the list's cursor
