@@ -738,6 +738,26 @@ TEST_F(SceneFolder, UnknownKeysAreIgnored) {
   EXPECT_EQ(load_scene(scene_path()).lights.size(), 4u);
 }
 
+// A value typed as 0.85 is saved as 0.85 (the shortest decimal that reads
+// back as the float), not as 0.8500000238418579, and still reads back exactly.
+TEST(RigRoundTrip, FloatsAreWrittenAsTyped) {
+  Rig rig;
+  Light lamp;
+  lamp.color = Vec3(0.85f, 1.0f / 3.0f, 0.1f);
+  lamp.power = 60.7f;
+  rig.lights = {lamp};
+  const std::string text = rig_to_json(rig);
+  EXPECT_NE(text.find("0.85,"), std::string::npos) << text;
+  EXPECT_NE(text.find("60.7"), std::string::npos) << text;
+  EXPECT_EQ(text.find("0.8500000"), std::string::npos) << text;
+  EXPECT_EQ(text.find("60.70000"), std::string::npos) << text;
+  TempDir dir;
+  save_rig(dir / "rig.json", rig);
+  const Rig back = load_rig(dir / "rig.json");
+  EXPECT_EQ(back.lights.at(0).color, lamp.color);
+  EXPECT_EQ(back.lights.at(0).power, lamp.power);
+}
+
 TEST(RigRoundTrip, SaveThenLoadGivesTheSameLights) {
   TempDir dir;
   Rig rig;

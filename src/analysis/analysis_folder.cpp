@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "io/json_text.h"
 #include "io/atomic_file.h"
 #include "io/content_hash.h"
 #include "io/image_io.h"
@@ -150,7 +151,7 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   for (const TriangleAlbedo& t : a.albedo.unseen_triangles)
     triangles.push_back({t.triangle, t.albedo.x(), t.albedo.y(), t.albedo.z()});
   j["unseen_triangles"] = std::move(triangles);
-  write_text_atomically(folder / "analysis.json", j.dump(2) + "\n");
+  write_text_atomically(folder / "analysis.json", json_text(j));
   batch.commit();
 }
 

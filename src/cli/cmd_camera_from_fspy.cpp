@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "io/json_text.h"
 #include "io/atomic_file.h"
 #include "io/fspy.h"
 #include "io/json_reader.h"
@@ -22,7 +23,7 @@ void update_scene_camera(const std::string& scene_path, const nlohmann::json& ca
   JsonReader(scene_path).expect_object(scene, "");
   allow_replacing_input(scene_path);  // rewriting it is what --scene is for
   scene["camera"] = camera;
-  write_text_atomically(scene_path, scene.dump(2) + "\n");
+  write_text_atomically(scene_path, json_text(scene));
 }
 
 struct CameraFromFspyArgs {
@@ -39,10 +40,10 @@ void run_camera_from_fspy(const CameraFromFspyArgs& args, Progress& progress) {
     update_scene_camera(args.scene, camera);
     std::printf("camera of %s replaced: %s\n", args.scene.c_str(), summary.c_str());
   } else if (!args.out.empty()) {
-    write_text_atomically(args.out, camera.dump(2) + "\n");
+    write_text_atomically(args.out, json_text(camera));
     std::printf("camera written to %s: %s\n", args.out.c_str(), summary.c_str());
   } else {
-    std::printf("%s\n", camera.dump(2).c_str());
+    std::printf("%s", json_text(camera).c_str());
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "io/json_text.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/mesh_io.h"
@@ -94,7 +95,7 @@ void run_mesh(const MeshArgs& args, Progress& progress) {
   OutputBatch outputs;
   save_obj(out / "mesh.obj", mesh.to_triangle_mesh());
   write_png(out / "mesh.png", draw_edges_over_photo(scene.photo, edges));
-  write_text_atomically(out / "mesh.json", j.dump(2) + "\n");
+  write_text_atomically(out / "mesh.json", json_text(j));
   outputs.commit();
   std::printf("mesh: %zu triangles in view -> %zu (%zu edges split, %zu vertices moved) in %.3f s, written to %s\n",
               report.triangles_clipped, mesh.triangles().size(), report.subdivision.edges_split,

@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/statistics.h"
+#include "io/json_text.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
@@ -149,7 +150,7 @@ void run_preview(const PreviewArgs& args, Progress& progress) {
   timing["converge_ms"] = converge_ms;
   timing["light"] = {{"name", start.name}, {"type", to_string(start.type)}, {"radius_m", radius}};
   timing["lights"] = rig.lights.size();
-  write_text_atomically(out / "timing.json", timing.dump(2) + "\n");
+  write_text_atomically(out / "timing.json", json_text(timing));
   outputs.commit();
   std::printf("%d frames: median %.1f ms, p95 %.1f ms; converged %.0f ms after the last; written to %s\n", args.frames,
               double(timing["median_frame_ms"]), double(timing["p95_frame_ms"]), converge_ms, out.c_str());

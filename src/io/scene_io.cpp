@@ -10,6 +10,7 @@
 #include "io/gltf_scene.h"
 #include "io/image_io.h"
 #include "io/json_reader.h"
+#include "io/json_text.h"
 #include "io/mesh_io.h"
 #include "io/scene_folder_reads.h"
 
@@ -177,11 +178,12 @@ Probe parse_probe(const JsonReader& r, const json& v, const std::string& ptr, co
   return p;
 }
 
+json v3(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+
 json light_to_json(const Light& l) {
   json j;
   j["name"] = l.name;
   j["type"] = to_string(l.type);
-  auto v3 = [](const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); };
   j["color"] = v3(l.color);
   if (!l.enabled) j["enabled"] = false;
   switch (l.type) {
@@ -260,7 +262,6 @@ void check_photo_aspect(const fs::path& photo_path, const Image& photo, const Ca
 }  // namespace
 
 nlohmann::json camera_to_json(const CameraSpec& c) {
-  auto v3 = [](const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); };
   json j = {{"position", v3(c.position)}, {"look_at", v3(c.look_at)}, {"up", v3(c.up)}, {"vfov_deg", c.vfov_deg}};
   if (c.principal_point != Vec2(0.5f, 0.5f))
     j["principal_point"] = json::array({c.principal_point.x(), c.principal_point.y()});
@@ -321,7 +322,6 @@ Rig load_rig(const fs::path& path) {
 }
 
 std::string scene_to_json(const Scene& scene, const fs::path& folder) {
-  auto v3 = [](const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); };
   const fs::path base = fs::absolute(folder).lexically_normal();
   auto relative = [&](const fs::path& p) {
     return fs::absolute(p).lexically_normal().lexically_relative(base).generic_string();
@@ -355,7 +355,7 @@ std::string scene_to_json(const Scene& scene, const fs::path& folder) {
                              {"forward", v3(p.forward)},
                              {"up", v3(p.up)}});
   }
-  return j.dump(2) + "\n";
+  return json_text(j);
 }
 
 std::string rig_to_json(const Rig& rig) {
@@ -364,7 +364,7 @@ std::string rig_to_json(const Rig& rig) {
   j["environment_scale"] = rig.environment_scale;
   j["lights"] = json::array();
   for (const auto& l : rig.lights) j["lights"].push_back(light_to_json(l));
-  return j.dump(2) + "\n";
+  return json_text(j);
 }
 
 void save_rig(const fs::path& path, const Rig& rig) { write_text_atomically(path, rig_to_json(rig)); }
