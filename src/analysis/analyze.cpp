@@ -79,8 +79,10 @@ constexpr int kResidualBlock = 8;
 constexpr int kResidualPathsDivisor = 4;  // the render back takes paths_per_pixel / this
 constexpr float kLargeResidual = 0.05f;   // above: warn
 constexpr int kProbeAlbedoPaths = 16;     // per probe pixel, for the albedo of what only a probe shows
-constexpr int kBouncePathsDivisor = 2;    // with the photo's radiance: the renders before the closing pass
-constexpr int kMinBouncePaths = 32;       // take paths_per_pixel / this, but no fewer than kMinBouncePaths
+// With the photo's radiance, the renders before the closing pass take
+// paths_per_pixel / kBouncePathsDivisor paths, but no fewer than kMinBouncePaths.
+constexpr int kBouncePathsDivisor = 2;
+constexpr int kMinBouncePaths = 32;
 constexpr int kPhotoRadiancePasses = 1;   // with the photo's radiance: interreflection passes
 
 float residual_of(const Image& photo, const Image& albedo, const Image& illumination,

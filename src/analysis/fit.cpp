@@ -250,9 +250,15 @@ class LightingFit {
     size_t pixels = 0, patches_seen = 0;
     const std::vector<ReferencePatch> patches = reference_patches(*scene_.reference);
     for (const ReferencePatch& patch : patches) {
+      // Only the pixels of the patch's bounding box can lie inside it.
+      Eigen::AlignedBox2f box;
+      for (const Vec2& v : patch.polygon) box.extend(v);
+      const int x0 = std::max(0, int(std::floor(box.min().x()))), y0 = std::max(0, int(std::floor(box.min().y())));
+      const int x1 = std::min(gbuffer_.width(), int(std::ceil(box.max().x())) + 1);
+      const int y1 = std::min(gbuffer_.height(), int(std::ceil(box.max().y())) + 1);
       size_t n = 0;
-      for (int y = 0; y < gbuffer_.height(); ++y)
-        for (int x = 0; x < gbuffer_.width(); ++x)
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
           if (gbuffer_.coverage(x, y) >= 1.0f && inside_polygon(patch.polygon, Vec2(x + 0.5f, y + 0.5f))) {
             recovered_x_known += bounce_albedo_.at(x, y).cwiseProduct(patch.albedo);
             known_squared += patch.albedo.cwiseProduct(patch.albedo);
