@@ -18,6 +18,7 @@
 #include <QtTest/QtTest>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -118,6 +119,25 @@ class StudioTest : public QObject {
   void show_converged_frame() {
     document().session().wait_until_converged();
     window_->refresh_frame();
+  }
+  // Presses the mouse on the geometry view at `at`, moves it by `by` and
+  // lets go; `before_release` runs while the button is still down.
+  void drag_in_geometry_view(QPoint at, QPoint by, const std::function<void()>& before_release = [] {}) {
+    GeometryView& view = window_->geometry_view();
+    const auto send = [&](QEvent::Type type, QPoint p, Qt::MouseButtons buttons) {
+      QMouseEvent event(type, p, view.mapToGlobal(p), Qt::LeftButton, buttons, Qt::NoModifier);
+      QApplication::sendEvent(&view, &event);
+    };
+    send(QEvent::MouseButtonPress, at, Qt::LeftButton);
+    send(QEvent::MouseMove, at + by, Qt::LeftButton);
+    before_release();
+    send(QEvent::MouseButtonRelease, at + by, Qt::NoButton);
+  }
+  // Where light `index`'s dot is in the geometry view.
+  QPoint dot_of(int index) {
+    GeometryView& view = window_->geometry_view();
+    const auto dot = view.project(view.marker_position(document().light(index)));
+    return dot ? dot->toPoint() : QPoint(-1, -1);
   }
 
  private slots:
@@ -462,6 +482,38 @@ class StudioTest : public QObject {
     QVERIFY(window_->last_error().contains("scene.json"));
   }
 
+  // Undoing every edit made since a save is back at the saved rig: the
+  // window says so. A run of key moves that a save interrupts is two undo
+  // steps, so that undo can stop at what was saved.
+  void undo_back_to_the_saved_rig_is_saved() {
+    QVERIFY(window_->open_rig(evening_));
+    window_->select_light(1);
+    GeometryView& view = window_->geometry_view();
+    QTest::keyClick(&view, Qt::Key_Up);
+    QVERIFY(window_->save_rig(folder_.filePath("clean.json")));
+    const Rig saved = document().rig();
+    QVERIFY(!window_->isWindowModified());
+
+    QTest::keyClick(&view, Qt::Key_Up);  // the same light, the same kind of move as the saved one
+    QTest::keyClick(&view, Qt::Key_Right);
+    drag_in_geometry_view(dot_of(1), QPoint(30, -20));
+    Light typed = document().light(1);
+    typed.power *= 2.0f;
+    window_->change_light(1, typed);
+    QVERIFY(window_->isWindowModified());
+    QVERIFY(document().light(1).position != saved.lights[1].position);
+
+    QCOMPARE(window_->undo_stack().index(), 4);  // the saved move, the two keys (one step), the drag, the edit
+    for (int i = 0; i < 3; ++i) window_->undo_stack().undo();
+    QVERIFY(window_->undo_stack().isClean());
+    QVERIFY(!window_->isWindowModified());
+    QCOMPARE(rig_to_json(document().rig()), rig_to_json(saved));
+    window_->undo_stack().undo();  // past the save: changed again
+    QVERIFY(window_->isWindowModified());
+    window_->undo_stack().redo();
+    QVERIFY(!window_->isWindowModified());
+  }
+
   void the_picture_changes_when_a_light_moves() {
     show_converged_frame();
     const QImage before = window_->photo_view().displayed_image();
@@ -504,14 +556,8 @@ class StudioTest : public QObject {
     QCOMPARE(window_->selected_light(), 1);
 
     const Light start = document().light(1);
-    const auto send = [&](QEvent::Type type, QPoint p, Qt::MouseButtons buttons) {
-      QMouseEvent event(type, p, view.mapToGlobal(p), Qt::LeftButton, buttons, Qt::NoModifier);
-      QApplication::sendEvent(&view, &event);
-    };
-    send(QEvent::MouseButtonPress, at, Qt::LeftButton);
-    send(QEvent::MouseMove, at + QPoint(40, 0), Qt::LeftButton);
-    const uint64_t moved_edit = document().session().last_edit();
-    send(QEvent::MouseButtonRelease, at + QPoint(40, 0), Qt::NoButton);
+    uint64_t moved_edit = 0;
+    drag_in_geometry_view(at, QPoint(40, 0), [&] { moved_edit = document().session().last_edit(); });
     // The drop makes the drag one undo step but no new edit: it does not
     // cancel the render of where the drag left the light.
     QCOMPARE(document().session().last_edit(), moved_edit);

@@ -35,7 +35,9 @@ class DeleteLightCommand : public QUndoCommand {
 
 // A change to one light: moved, re-shaped, recoloured, switched on or off.
 // Edits of the same kind to the same light in a row (key moves, a drag)
-// merge into one undo step when pushed with a merge kind.
+// merge into one undo step when pushed with a merge kind. QUndoStack never
+// merges into the command at its clean index, so a save ends the run and
+// undo can come back to what was saved.
 class EditLightCommand : public QUndoCommand {
  public:
   enum class Merge { never = -1, key_move = 1 };
