@@ -4,6 +4,7 @@
 // picture on screen follows the lights.
 #include <QDoubleSpinBox>
 #include <QFile>
+#include <QLabel>
 #include <QLineEdit>
 #include <QListView>
 #include <QMessageBox>
@@ -22,6 +23,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "gui/colour_temperature.h"
 #include "gui/geometry_view.h"
 #include "gui/light_dialog.h"
 #include "gui/light_list_model.h"
@@ -512,6 +514,101 @@ class StudioTest : public QObject {
     QVERIFY(window_->isWindowModified());
     window_->undo_stack().redo();
     QVERIFY(!window_->isWindowModified());
+  }
+
+  void a_temperature_gives_a_blackbody_colour() {
+    const Vec3 daylight = colour_from_temperature(6500.0f, 0.0f);
+    QVERIFY2(daylight.minCoeff() > 0.93f && daylight.maxCoeff() == 1.0f,
+             qPrintable(colour_hex(daylight)));  // near white: D65 sits close to the locus there
+    const Vec3 warm = colour_from_temperature(2700.0f, 0.0f);
+    QVERIFY(warm.x() == 1.0f && warm.x() > warm.y() && warm.y() > warm.z());
+    QVERIFY(warm.y() < 0.6f && warm.z() < 0.2f);
+    const Vec3 cool = colour_from_temperature(12000.0f, 0.0f);
+    QVERIFY(cool.z() == 1.0f && cool.z() > cool.y() && cool.y() > cool.x());
+    // Tint: + towards green, - towards magenta.
+    const auto greenness = [](const Vec3& c) { return c.y() / (c.x() + c.z()); };
+    QVERIFY(greenness(colour_from_temperature(5000.0f, 0.02f)) > greenness(colour_from_temperature(5000.0f, 0.0f)));
+    QVERIFY(greenness(colour_from_temperature(5000.0f, -0.02f)) < greenness(colour_from_temperature(5000.0f, 0.0f)));
+    // Back from a colour: the temperature and tint it was made with, and
+    // white is D65's (6504 K, Duv +0.0032).
+    const auto back = temperature_of_colour(colour_from_temperature(3200.0f, 0.01f));
+    QVERIFY(back && std::abs(back->kelvin - 3200.0f) < 2.0f && std::abs(back->tint - 0.01f) < 1e-4f);
+    const auto white = temperature_of_colour(Vec3::Ones());
+    QVERIFY(white && std::abs(white->kelvin - 6504.0f) < 10.0f && std::abs(white->tint - 0.0032f) < 3e-4f);
+    QVERIFY(!temperature_of_colour(Vec3::Zero()));
+  }
+
+  // Typing a temperature and tint in the selected light's details sets its
+  // colour (one undo step) and the rig saves it; a temperature out of range
+  // is set to the nearest end of it.
+  void the_temperature_field_sets_the_colour_saved_in_the_rig() {
+    QVERIFY(window_->open_rig(evening_));
+    const Rig opened = document().rig();
+    window_->select_light(1);
+    window_->select_light(0);
+    QCOMPARE(window_->undo_stack().count(), 0);  // showing a colour as a temperature changes nothing
+    auto* kelvin = window_->findChild<QDoubleSpinBox*>("temperature");
+    auto* tint = window_->findChild<QDoubleSpinBox*>("tint");
+    QVERIFY(kelvin && tint && kelvin->isEnabled());
+    tint->setValue(0.0);
+    kelvin->setValue(2700.0);
+    expect_same_light(document().light(1), opened.lights[1]);
+    const Vec3 warm = colour_from_temperature(2700.0f, 0.0f);
+    for (int i = 0; i < 3; ++i) EXPECT_EXACT(document().light(0).color[i], warm[i]);
+    QCOMPARE(window_->undo_stack().count(), 1);
+    QCOMPARE(window_->undo_stack().undoText(), QStringLiteral("Colour temperature"));
+    QCOMPARE(int(std::lround(kelvin->value())), 2700);
+
+    const QString path = folder_.filePath("warm.json");
+    QVERIFY(window_->save_rig(path));
+    const Rig saved = load_rig(path.toStdString());
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EXACT(saved.lights[0].color[i], warm[i]);
+      EXPECT_EXACT(saved.lights[1].color[i], opened.lights[1].color[i]);  // as typed, untouched
+    }
+
+    kelvin->setFocus();  // Enter in the geometry view would open Change…
+    kelvin->selectAll();
+    QTest::keyClicks(kelvin, "500");
+    QTest::keyClick(kelvin, Qt::Key_Return);
+    QCOMPARE(kelvin->value(), double(kMinKelvin));
+    const Vec3 coolest = colour_from_temperature(kMinKelvin, 0.0f);
+    for (int i = 0; i < 3; ++i) EXPECT_EXACT(document().light(0).color[i], coolest[i]);
+    QCOMPARE(window_->undo_stack().count(), 2);  // the save ended the run
+    window_->undo_stack().undo();
+    window_->undo_stack().undo();
+    for (int i = 0; i < 3; ++i) EXPECT_EXACT(document().light(0).color[i], opened.lights[0].color[i]);
+  }
+
+  // Stops: +1 doubles the power the light had when it was selected, typed
+  // values count from it too, and a run of them is one undo step.
+  void the_stops_field_doubles_the_power_per_stop() {
+    QVERIFY(window_->open_rig(evening_));
+    window_->select_light(1);
+    const float start = document().light(1).power;  // 300 W
+    auto* stops = window_->findChild<QDoubleSpinBox*>("stops");
+    QVERIFY(stops && stops->isEnabled());
+    QCOMPARE(stops->value(), 0.0);
+    QCOMPARE(window_->findChild<QLabel*>("stops_reference")->text(), QStringLiteral("EV 0 = 300 W"));
+    stops->stepUp();
+    EXPECT_EXACT(document().light(1).power, 2.0f * start);
+    stops->stepUp();
+    EXPECT_EXACT(document().light(1).power, 4.0f * start);
+    stops->setFocus();
+    stops->selectAll();
+    QTest::keyClicks(stops, "-1");
+    QTest::keyClick(stops, Qt::Key_Return);
+    EXPECT_EXACT(document().light(1).power, 0.5f * start);
+    EXPECT_EXACT(document().session().rig().lights[1].power, 0.5f * start);
+    QCOMPARE(window_->undo_stack().count(), 1);
+    // Selected again, its power now is EV 0.
+    window_->select_light(0);
+    window_->select_light(1);
+    QCOMPARE(stops->value(), 0.0);
+    QCOMPARE(window_->findChild<QLabel*>("stops_reference")->text(), QStringLiteral("EV 0 = 150 W"));
+    window_->undo_stack().undo();
+    EXPECT_EXACT(document().light(1).power, start);
+    QCOMPARE(stops->value(), 1.0);  // 300 W is a stop above EV 0
   }
 
   void the_picture_changes_when_a_light_moves() {

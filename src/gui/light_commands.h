@@ -40,7 +40,8 @@ class DeleteLightCommand : public QUndoCommand {
 // undo can come back to what was saved.
 class EditLightCommand : public QUndoCommand {
  public:
-  enum class Merge { never = -1, key_move = 1 };
+  // The undo command ids: apart from EnvironmentScaleCommand's (2).
+  enum class Merge { never = -1, key_move = 1, colour = 3, power = 4 };
   EditLightCommand(LightingDocument& document, int index, const Light& before, const Light& after,
                    const QString& text, Merge merge = Merge::never);
   void redo() override;

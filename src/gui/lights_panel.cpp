@@ -78,12 +78,10 @@ void LightsPanel::show_selection(int index) {
     list_->selectionModel()->setCurrentIndex(row, QItemSelectionModel::ClearAndSelect);
     list_->viewport()->update();
   }
-  show_details(index);
-}
-
-void LightsPanel::show_details(int index) {
   details_->show_light(document_ && index >= 0 ? &document_->light(index) : nullptr);
 }
+
+void LightsPanel::show_details(int index) { details_->refresh_light(document_->light(index)); }
 
 void LightsPanel::enable_buttons(bool open, bool selected) {
   new_button_->setEnabled(open);

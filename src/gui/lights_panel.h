@@ -25,6 +25,7 @@ class LightsPanel : public QWidget {
 
   GeometryView& geometry_view() const { return *geometry_; }
   LightListModel& model() const { return *model_; }
+  LightDetails& details() const { return *details_; }
 
   void set_document(LightingDocument* document);
   // Shows light `index` as selected (-1: none) in the view, the list and the details.

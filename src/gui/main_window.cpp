@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "gui/geometry_view.h"
 #include "gui/light_commands.h"
+#include "gui/light_details.h"
 #include "gui/light_dialog.h"
 #include "gui/light_list_model.h"
 #include "gui/lights_panel.h"
@@ -92,6 +93,8 @@ void MainWindow::connect_panels() {
   connect(geometry, &GeometryView::deleteRequested, this, [this] {
     if (selected_ >= 0) delete_light(selected_);
   });
+  connect(&lights_->details(), &LightDetails::colourEdited, this, &MainWindow::set_selected_colour);
+  connect(&lights_->details(), &LightDetails::powerEdited, this, &MainWindow::set_selected_power);
   connect(&lights_->model(), &LightListModel::enabledToggleRequested, this, &MainWindow::set_light_enabled);
   connect(lights_, &LightsPanel::lightSelected, this, &MainWindow::select_light);
   connect(lights_, &LightsPanel::newRequested, this, &MainWindow::new_light_dialog);
@@ -351,17 +354,33 @@ void MainWindow::set_light_enabled(int index, bool enabled) {
                                   enabled ? tr("Switch light on") : tr("Switch light off")));
 }
 
+void MainWindow::edit_selected_light(const QString& text, EditLightCommand::Merge merge,
+                                     const std::function<void(Light&)>& change) {
+  if (!document_ || selected_ < 0) return;
+  Light after = document_->light(selected_);
+  change(after);
+  undo_.push(new EditLightCommand(*document_, selected_, document_->light(selected_), after, text, merge));
+}
+
+void MainWindow::set_selected_colour(const Vec3& colour) {
+  edit_selected_light(tr("Colour temperature"), EditLightCommand::Merge::colour,
+                      [&](Light& light) { light.color = colour; });
+}
+
+void MainWindow::set_selected_power(float power) {
+  edit_selected_light(tr("Power in stops"), EditLightCommand::Merge::power, [&](Light& light) {
+    (light.type == LightType::directional ? light.irradiance : light.power) = power;
+  });
+}
+
 void MainWindow::move_selected_light(const Vec3& delta) {
   if (!document_ || selected_ < 0) return;
-  const Light& before = document_->light(selected_);
-  if (before.type == LightType::directional) {
+  if (document_->light(selected_).type == LightType::directional) {
     statusBar()->showMessage(tr("A sun has no position: change its direction with Change\u2026"), 5000);
     return;
   }
-  Light after = before;
-  after.position += delta;
-  undo_.push(
-      new EditLightCommand(*document_, selected_, before, after, tr("Move light"), EditLightCommand::Merge::key_move));
+  edit_selected_light(tr("Move light"), EditLightCommand::Merge::key_move,
+                      [&](Light& light) { light.position += delta; });
 }
 
 void MainWindow::place_selected_light(const QPointF& image_position) {

@@ -10,9 +10,11 @@
 #include <QMainWindow>
 #include <QTimer>
 #include <QUndoStack>
+#include <functional>
 #include <memory>
 
 #include "gui/background_task.h"
+#include "gui/light_commands.h"
 #include "gui/lighting_document.h"
 
 class QMenu;
@@ -60,6 +62,10 @@ class MainWindow : public QMainWindow {
   void change_light(int index, const Light& light);
   void delete_light(int index);
   void set_light_enabled(int index, bool enabled);
+  // The selected light's colour / power (a sun's irradiance); a run of these
+  // edits of one light is one undo step.
+  void set_selected_colour(const Vec3& colour);
+  void set_selected_power(float power);
   void move_selected_light(const Vec3& delta);
   // Puts the selected light in front of the surface under the re-lit
   // image's pixel position (spots, areas and suns aim at it).
@@ -100,6 +106,9 @@ class MainWindow : public QMainWindow {
   void remember(const QString& key, const QString& path);
   void fill_recent_menu(QMenu* menu, const QString& key);
   Light default_new_light() const;
+  // Pushes `change` of the selected light as one edit (merged as `merge` says).
+  void edit_selected_light(const QString& text, EditLightCommand::Merge merge,
+                           const std::function<void(Light&)>& change);
 
   StudioOptions options_;
   std::shared_ptr<const StudioScene> scene_;
