@@ -611,6 +611,42 @@ class StudioTest : public QObject {
     QCOMPARE(stops->value(), 1.0);  // 300 W is a stop above EV 0
   }
 
+  // Ctrl+D (or the list's right-click menu) adds a copy of the selected light
+  // under a new name, selected, as one undo step.
+  void duplicating_a_light_copies_it_under_a_new_name() {
+    QVERIFY(window_->open_rig(evening_));
+    const Light lamp = document().light(0);
+    window_->select_light(0);
+    QTest::keyClick(&window_->geometry_view(), Qt::Key_D, Qt::ControlModifier);
+    QCOMPARE(document().light_count(), 3);
+    QCOMPARE(window_->selected_light(), 2);
+    Light expected = lamp;
+    expected.name = "lamp copy";
+    expect_same_light(document().light(2), expected);
+    QCOMPARE(document().session().rig().lights.size(), size_t(3));
+    QCOMPARE(window_->undo_stack().count(), 1);
+    QCOMPARE(window_->undo_stack().undoText(), QStringLiteral("Duplicate light \u201clamp\u201d"));
+
+    // From the list's menu: a copy of the copy, and another of the lamp, each a name of its own.
+    auto* list = window_->findChild<QListView*>("light_list");
+    QCOMPARE(list->contextMenuPolicy(), Qt::ActionsContextMenu);
+    QAction* duplicate = nullptr;
+    for (QAction* a : list->actions())
+      if (a->text().remove('&').startsWith("Duplicate")) duplicate = a;
+    QVERIFY(duplicate);
+    duplicate->trigger();
+    QCOMPARE(document().light(3).name, std::string("lamp copy 2"));
+    window_->select_light(0);
+    duplicate->trigger();
+    QCOMPARE(document().light(4).name, std::string("lamp copy 3"));
+    QCOMPARE(window_->selected_light(), 4);
+
+    for (int i = 0; i < 3; ++i) window_->undo_stack().undo();
+    QCOMPARE(document().light_count(), 2);
+    QCOMPARE(document().session().rig().lights.size(), size_t(2));
+    expect_same_light(document().light(0), lamp);
+  }
+
   void the_picture_changes_when_a_light_moves() {
     show_converged_frame();
     const QImage before = window_->photo_view().displayed_image();

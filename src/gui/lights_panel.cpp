@@ -83,6 +83,11 @@ void LightsPanel::show_selection(int index) {
 
 void LightsPanel::show_details(int index) { details_->refresh_light(document_->light(index)); }
 
+void LightsPanel::set_list_menu(const QList<QAction*>& actions) {
+  list_->addActions(actions);
+  list_->setContextMenuPolicy(Qt::ActionsContextMenu);
+}
+
 void LightsPanel::enable_buttons(bool open, bool selected) {
   new_button_->setEnabled(open);
   change_button_->setEnabled(selected);

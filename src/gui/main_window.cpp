@@ -5,9 +5,11 @@
 #include <QFileInfo>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QRegularExpression>
 #include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -36,6 +38,20 @@ void choose_view_size(const Image& photo, int max_width, SessionOptions& options
   if (photo.width <= max_width) return;
   options.width = max_width;
   options.height = std::max(1, int(std::lround(double(photo.height) * max_width / photo.width)));
+}
+
+// "NAME copy", or "NAME copy N" with the first N from 2 that no light of
+// `rig` is named; a copy of a copy counts on from the original's name.
+std::string copy_name(const Rig& rig, const std::string& name) {
+  static const QRegularExpression copy_suffix(QStringLiteral(" copy( \\d+)?$"));
+  const QString stem = QString::fromStdString(name).remove(copy_suffix) + QStringLiteral(" copy");
+  const auto taken = [&](const QString& candidate) {
+    return std::any_of(rig.lights.begin(), rig.lights.end(),
+                       [&](const Light& l) { return l.name == candidate.toStdString(); });
+  };
+  QString candidate = stem;
+  for (int n = 2; taken(candidate); ++n) candidate = QStringLiteral("%1 %2").arg(stem).arg(n);
+  return candidate.toStdString();
 }
 
 }  // namespace
@@ -172,7 +188,10 @@ void MainWindow::make_menus() {
       edit->addAction(tr("&New Light\u2026"), QKeySequence(Qt::Key_Insert), this, &MainWindow::new_light_dialog);
   change_light_action_ =
       edit->addAction(tr("&Change Light\u2026"), QKeySequence(Qt::Key_Return), this, &MainWindow::change_light_dialog);
+  duplicate_light_action_ = edit->addAction(tr("D&uplicate Light"), QKeySequence(tr("Ctrl+D")), this,
+                                            [this] { duplicate_light(selected_); });
   delete_light_action_ = edit->addAction(tr("&Delete Light\tDel"), this, [this] { delete_light(selected_); });
+  lights_->set_list_menu({change_light_action_, duplicate_light_action_, delete_light_action_});
   // Insert and Enter act where the lights are handled, not in the spin boxes.
   for (QAction* action : {new_light_action_, change_light_action_}) {
     action->setShortcutContext(Qt::WidgetShortcut);
@@ -346,6 +365,15 @@ void MainWindow::delete_light(int index) {
     undo_.push(new DeleteLightCommand(*document_, index));
 }
 
+void MainWindow::duplicate_light(int index) {
+  if (!document_ || index < 0 || index >= document_->light_count()) return;
+  Light copy = document_->light(index);
+  copy.name = copy_name(document_->rig(), copy.name);
+  auto* command = new AddLightCommand(*document_, copy);
+  command->setText(tr("Duplicate light \u201c%1\u201d").arg(QString::fromStdString(document_->light(index).name)));
+  undo_.push(command);
+}
+
 void MainWindow::set_light_enabled(int index, bool enabled) {
   if (!document_) return;
   Light light = document_->light(index);
@@ -426,7 +454,7 @@ void MainWindow::update_actions() {
   const bool has = open && selected_ >= 0;
   for (QAction* a : {save_rig_action_, save_rig_as_action_, open_rig_action_, export_action_, new_light_action_})
     a->setEnabled(open);
-  for (QAction* a : {change_light_action_, delete_light_action_}) a->setEnabled(has);
+  for (QAction* a : {change_light_action_, duplicate_light_action_, delete_light_action_}) a->setEnabled(has);
   lights_->enable_buttons(open, has);
   photo_panel_->enable_ambient(open);
 }
