@@ -647,6 +647,59 @@ class StudioTest : public QObject {
     expect_same_light(document().light(0), lamp);
   }
 
+  // Solo (Ctrl+L) draws one light alone and the others off, without
+  // touching the rig: not an edit, saved as it was; again, it lights them.
+  void solo_shows_one_light_alone_and_leaves_the_rig() {
+    QVERIFY(window_->open_rig(evening_));
+    const Rig rig = document().rig();
+    show_converged_frame();
+    const QImage both = window_->photo_view().displayed_image();
+    window_->select_light(0);
+    QTest::keyClick(&window_->geometry_view(), Qt::Key_L, Qt::ControlModifier);
+    QCOMPARE(document().solo(), 0);
+    const Rig shown = document().session().rig();
+    QVERIFY(shown.lights[0].enabled && !shown.lights[1].enabled);
+    QCOMPARE(rig_to_json(document().rig()), rig_to_json(rig));
+    QCOMPARE(window_->undo_stack().count(), 0);
+    QVERIFY(!window_->isWindowModified());
+    LightListModel& model = window_->light_model();
+    QVERIFY(model.data(model.index(0), Qt::DisplayRole).toString().endsWith("solo"));
+    QVERIFY(model.data(model.index(1), Qt::ForegroundRole).isValid());  // greyed: off for now
+    QCOMPARE(model.data(model.index(1), Qt::CheckStateRole).toInt(), int(Qt::Checked));  // its own switch
+
+    show_converged_frame();
+    const QImage lamp_alone = window_->photo_view().displayed_image();
+    QVERIFY(differing_pixels(lamp_alone, both) > 0);
+    const QString path = folder_.filePath("solo.json");
+    QVERIFY(window_->save_rig(path));
+    QCOMPARE(rig_to_json(load_rig(path.toStdString())), rig_to_json(rig));
+
+    // A switched-off light soloed is lit; un-solo puts every switch back.
+    window_->set_light_enabled(1, false);
+    window_->select_light(1);
+    QTest::keyClick(&window_->geometry_view(), Qt::Key_L, Qt::ControlModifier);
+    QCOMPARE(document().solo(), 1);
+    QVERIFY(!document().session().rig().lights[0].enabled && document().session().rig().lights[1].enabled);
+    QTest::keyClick(&window_->geometry_view(), Qt::Key_L, Qt::ControlModifier);
+    QCOMPARE(document().solo(), -1);
+    QVERIFY(document().session().rig().lights[0].enabled && !document().session().rig().lights[1].enabled);
+    window_->undo_stack().undo();
+    show_converged_frame();
+    QCOMPARE(differing_pixels(window_->photo_view().displayed_image(), both), 0);
+
+    // A light added while one is soloed is off like the others; deleting the soloed light ends the solo.
+    window_->solo_light(1);
+    window_->duplicate_light(0);  // appended after it
+    QCOMPARE(document().solo(), 1);
+    QVERIFY(!document().session().rig().lights[2].enabled);
+    window_->undo_stack().undo();
+    window_->delete_light(1);
+    QCOMPARE(document().solo(), -1);
+    QVERIFY(document().session().rig().lights[0].enabled);
+    window_->undo_stack().undo();
+    QVERIFY(document().session().rig().lights[1].enabled);
+  }
+
   void the_picture_changes_when_a_light_moves() {
     show_converged_frame();
     const QImage before = window_->photo_view().displayed_image();

@@ -66,6 +66,7 @@ void GeometryView::set_document(LightingDocument* document) {
                         &LightingDocument::lightRemoved})
       connect(document_, signal, this, qOverload<>(&QWidget::update));
     connect(document_, &LightingDocument::rigReset, this, qOverload<>(&QWidget::update));
+    connect(document_, &LightingDocument::soloChanged, this, qOverload<>(&QWidget::update));
     connect(document_, &QObject::destroyed, this, [this] { set_document(nullptr); });
   }
   reset_orbit();
@@ -209,7 +210,7 @@ void GeometryView::draw_lights(QPainter& painter) const {
     const Vec3 at = marker_position(light);
     const auto p = project(at);
     if (!p) continue;
-    const QColor colour = dot_colour(i == selected_, light.enabled);
+    const QColor colour = dot_colour(i == selected_, document_->shown_light(i).enabled);
     if (light.type != LightType::point) {
       // Which way it shines: a short line towards where the light goes.
       const Vec3 towards = at + 0.08f * scene_size_ * light.direction.normalized();

@@ -76,6 +76,9 @@ void LightListModel::set_document(LightingDocument* document) {
       beginResetModel();
       endResetModel();
     });
+    connect(document_, &LightingDocument::soloChanged, this, [this] {
+      if (rowCount() > 0) emit dataChanged(index(0), index(rowCount() - 1));
+    });
     connect(document_, &QObject::destroyed, this, [this] { set_document(nullptr); });
   }
   endResetModel();
@@ -90,7 +93,10 @@ QVariant LightListModel::data(const QModelIndex& index, int role) const {
   const Light& light = document_->light(index.row());
   switch (role) {
     case Qt::DisplayRole:
-      return light_summary(light);
+      return index.row() == document_->solo() ? tr("%1 \u2014 solo").arg(light_summary(light)) : light_summary(light);
+    case Qt::ForegroundRole:  // the others, while a light is soloed: off for now
+      if (document_->solo() >= 0 && index.row() != document_->solo()) return QColor(150, 150, 150);
+      return {};
     case Qt::DecorationRole:
       return eye_icon(light);
     case Qt::CheckStateRole:

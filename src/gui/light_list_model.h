@@ -1,6 +1,7 @@
 // LightListModel: the lights of a LightingDocument as a list — each row its
 // short description, an eye icon in the light's colour and a checkbox that
-// switches the light on and off. A click on the checkbox does not change the
+// switches the light on and off; while a light is soloed, it says so and the
+// others are grey. A click on the checkbox does not change the
 // document itself: it asks (enabledToggleRequested) so that the change goes
 // through the undo stack. EyeToggleDelegate makes a click on the eye do
 // what a click on the checkbox does.

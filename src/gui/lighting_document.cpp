@@ -11,20 +11,46 @@ LightingDocument::LightingDocument(std::shared_ptr<const StudioScene> scene, con
 
 LightingDocument::~LightingDocument() = default;
 
+Light LightingDocument::shown_light(int index) const {
+  Light shown = light(index);
+  if (solo_ >= 0) shown.enabled = index == solo_;
+  return shown;
+}
+
+Rig LightingDocument::shown_rig() const {
+  Rig shown = rig_;
+  for (int i = 0; i < light_count(); ++i) shown.lights[size_t(i)] = shown_light(i);
+  return shown;
+}
+
+void LightingDocument::set_solo(int index) {
+  if (index == solo_) return;
+  const int before = solo_;
+  const auto lit = [this](int i, int solo) { return solo < 0 ? light(i).enabled : i == solo; };
+  solo_ = index;
+  // Only the lights that go on or off are drawn again.
+  for (int i = 0; i < light_count(); ++i)
+    if (lit(i, before) != lit(i, solo_)) session_->set_light(size_t(i), shown_light(i));
+  emit soloChanged(solo_);
+}
+
 void LightingDocument::set_light(int index, const Light& light) {
   rig_.lights.at(size_t(index)) = light;
-  session_->set_light(size_t(index), light);
+  session_->set_light(size_t(index), shown_light(index));
   emit lightChanged(index);
 }
 
 void LightingDocument::insert_light(int index, const Light& light) {
   const size_t at = size_t(index);
   rig_.lights.insert(rig_.lights.begin() + std::ptrdiff_t(at), light);
-  session_->insert_light(at, light);
+  if (solo_ >= index) ++solo_;
+  session_->insert_light(at, shown_light(index));
   emit lightInserted(index);
 }
 
 void LightingDocument::remove_light(int index) {
+  if (index == solo_) set_solo(-1);
+  if (index < solo_) --solo_;
   rig_.lights.erase(rig_.lights.begin() + index);
   session_->remove_light(size_t(index));
   emit lightRemoved(index);
@@ -37,6 +63,10 @@ void LightingDocument::set_environment_scale(float scale) {
 }
 
 void LightingDocument::reset_rig(const Rig& rig) {
+  if (solo_ >= 0) {
+    solo_ = -1;
+    emit soloChanged(-1);
+  }
   rig_ = rig;
   session_->set_rig(rig_);
   emit rigReset();

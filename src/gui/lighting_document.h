@@ -2,6 +2,8 @@
 // with a RelightSession that renders it — on a loaded scene. Every change to
 // the rig goes through here (the undo commands call it), and each one
 // announces itself so that the list, the geometry view and the photo follow.
+// A light can be soloed: the session then draws it alone, lit, and the
+// others off, while the rig keeps every light's own `enabled`.
 #pragma once
 
 #include <QObject>
@@ -26,6 +28,14 @@ class LightingDocument : public QObject {
   int light_count() const { return int(rig_.lights.size()); }
   const Light& light(int index) const { return rig_.lights.at(size_t(index)); }
   RelightSession& session() { return *session_; }
+  // Light `index` as the session draws it: as in the rig, or, while a light
+  // is soloed, switched on if it is that one and off if not.
+  Light shown_light(int index) const;
+  // The rig as the session draws it (what the picture shows).
+  Rig shown_rig() const;
+  int solo() const { return solo_; }  // the soloed light, or -1
+  // Solos light `index`; -1 lights the rig as it is again.
+  void set_solo(int index);
 
   void set_light(int index, const Light& light);
   // Inserts at `index` (0..light_count()).
@@ -42,11 +52,13 @@ class LightingDocument : public QObject {
   void lightRemoved(int index);
   void environmentScaleChanged(float scale);
   void rigReset();
+  void soloChanged(int index);
 
  private:
   std::shared_ptr<const StudioScene> scene_;
   Rig rig_;
   std::unique_ptr<RelightSession> session_;
+  int solo_ = -1;
 };
 
 }  // namespace relight::gui

@@ -1,5 +1,6 @@
 // The main window's left panel: the geometry view, the list of lights (eye
-// checkbox, short description) with New, Change and Delete, and the
+// checkbox, short description) with New, Change and Delete (and a
+// right-click menu of the window's light actions), and the
 // selected light's details. It shows a document and a selection; what the
 // user asks for comes out as signals (and the geometry view's own), for the
 // window to turn into undoable edits.

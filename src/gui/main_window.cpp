@@ -190,8 +190,12 @@ void MainWindow::make_menus() {
       edit->addAction(tr("&Change Light\u2026"), QKeySequence(Qt::Key_Return), this, &MainWindow::change_light_dialog);
   duplicate_light_action_ = edit->addAction(tr("D&uplicate Light"), QKeySequence(tr("Ctrl+D")), this,
                                             [this] { duplicate_light(selected_); });
+  solo_light_action_ = edit->addAction(tr("&Solo Light"), QKeySequence(tr("Ctrl+L")), this, [this] {
+    if (document_) solo_light(document_->solo() == selected_ ? -1 : selected_);
+  });
+  solo_light_action_->setCheckable(true);
   delete_light_action_ = edit->addAction(tr("&Delete Light\tDel"), this, [this] { delete_light(selected_); });
-  lights_->set_list_menu({change_light_action_, duplicate_light_action_, delete_light_action_});
+  lights_->set_list_menu({change_light_action_, duplicate_light_action_, solo_light_action_, delete_light_action_});
   // Insert and Enter act where the lights are handled, not in the spin boxes.
   for (QAction* action : {new_light_action_, change_light_action_}) {
     action->setShortcutContext(Qt::WidgetShortcut);
@@ -269,6 +273,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
     photo_panel_->show_ambient(document_->rig().environment_scale);
   });
   connect(document_.get(), &LightingDocument::environmentScaleChanged, photo_panel_, &PhotoPanel::show_ambient);
+  connect(document_.get(), &LightingDocument::soloChanged, this, &MainWindow::update_actions);
   photo_panel_->show_ambient(rig.environment_scale);
   photo_view().set_photo(std::make_shared<const Image>(scene_->analysed->scene().photo));
   photo_view().set_relit(nullptr);
@@ -328,7 +333,7 @@ void MainWindow::export_image(const QString& path) {
     return;
   }
   const std::shared_ptr<const StudioScene> scene = scene_;
-  const Rig rig = document_->rig();
+  const Rig rig = document_->shown_rig();  // with a light soloed, that light's own picture
   const RenderOptions render = options_.session.final_render;
   const float exposure = photo_view().exposure();
   const std::string target = path.toStdString();
@@ -372,6 +377,15 @@ void MainWindow::duplicate_light(int index) {
   auto* command = new AddLightCommand(*document_, copy);
   command->setText(tr("Duplicate light \u201c%1\u201d").arg(QString::fromStdString(document_->light(index).name)));
   undo_.push(command);
+}
+
+void MainWindow::solo_light(int index) {
+  if (!document_ || index >= document_->light_count()) return;
+  document_->set_solo(index);
+  if (index >= 0)
+    statusBar()->showMessage(tr("Only \u201c%1\u201d is lit; Solo Light again (Ctrl+L) lights the others")
+                                 .arg(QString::fromStdString(document_->light(index).name)),
+                             8000);
 }
 
 void MainWindow::set_light_enabled(int index, bool enabled) {
@@ -454,7 +468,9 @@ void MainWindow::update_actions() {
   const bool has = open && selected_ >= 0;
   for (QAction* a : {save_rig_action_, save_rig_as_action_, open_rig_action_, export_action_, new_light_action_})
     a->setEnabled(open);
-  for (QAction* a : {change_light_action_, duplicate_light_action_, delete_light_action_}) a->setEnabled(has);
+  for (QAction* a : {change_light_action_, duplicate_light_action_, solo_light_action_, delete_light_action_})
+    a->setEnabled(has);
+  solo_light_action_->setChecked(has && document_->solo() == selected_);
   lights_->enable_buttons(open, has);
   photo_panel_->enable_ambient(open);
 }

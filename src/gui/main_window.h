@@ -64,6 +64,9 @@ class MainWindow : public QMainWindow {
   // Adds a copy of light `index`, named "NAME copy" (or "NAME copy 2", ...:
   // a name no light has), in the same place, and selects it.
   void duplicate_light(int index);
+  // Shows light `index` alone (-1: every light as the rig has it); not an
+  // edit of the rig, so not on the undo stack.
+  void solo_light(int index);
   void set_light_enabled(int index, bool enabled);
   // The selected light's colour / power (a sun's irradiance); a run of these
   // edits of one light is one undo step.
@@ -126,7 +129,8 @@ class MainWindow : public QMainWindow {
   PhotoPanel* photo_panel_;
   TaskStatus* task_status_;
   QAction *save_rig_action_, *save_rig_as_action_, *open_rig_action_, *export_action_;
-  QAction *new_light_action_, *change_light_action_, *duplicate_light_action_, *delete_light_action_;
+  QAction *new_light_action_, *change_light_action_, *duplicate_light_action_, *solo_light_action_,
+      *delete_light_action_;
 };
 
 }  // namespace relight::gui
