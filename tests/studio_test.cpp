@@ -558,6 +558,7 @@ class StudioTest : public QObject {
     QCOMPARE(window_->undo_stack().count(), 1);
     QCOMPARE(window_->undo_stack().undoText(), QStringLiteral("Colour temperature"));
     QCOMPARE(int(std::lround(kelvin->value())), 2700);
+    keep_picture("temperature", *window_);
 
     const QString path = folder_.filePath("warm.json");
     QVERIFY(window_->save_rig(path));
@@ -668,6 +669,7 @@ class StudioTest : public QObject {
     QCOMPARE(model.data(model.index(1), Qt::CheckStateRole).toInt(), int(Qt::Checked));  // its own switch
 
     show_converged_frame();
+    keep_picture("solo", *window_);
     const QImage lamp_alone = window_->photo_view().displayed_image();
     QVERIFY(differing_pixels(lamp_alone, both) > 0);
     const QString path = folder_.filePath("solo.json");
