@@ -778,6 +778,30 @@ class StudioTest : public QObject {
     QCOMPARE(window_->undo_stack().undoText(), QStringLiteral("Place light"));
   }
 
+  // With a light soloed the export is that light's own picture: less light
+  // than the whole rig's, all of it from the soloed light.
+  void exporting_while_soloed_renders_that_light_alone() {
+    QVERIFY(window_->open_rig(evening_));
+    const auto exported = [&](const QString& name) {
+      QSignalSpy done(window_.get(), &MainWindow::exportFinished);
+      window_->export_image(folder_.filePath(name));
+      [&] { QVERIFY(done.wait(240000)); }();
+      return read_image(folder_.filePath(name).toStdString());
+    };
+    const auto total = [](const Image& image) {
+      Vec3 sum = Vec3::Zero();
+      for (const Vec3& p : image.pixels) sum += p;
+      return sum;
+    };
+    const Vec3 both = total(exported("both.exr"));
+    window_->solo_light(1);  // the cool spot: bluer than the warm lamp
+    const Vec3 spot = total(exported("spot.exr"));
+    window_->solo_light(-1);
+    QVERIFY(spot.sum() < 0.8f * both.sum());
+    QVERIFY(spot.z() / spot.x() > both.z() / both.x());
+    QCOMPARE(total(exported("again.exr")), both);  // renders are deterministic
+  }
+
   void export_writes_the_full_size_image() {
     QSignalSpy done(window_.get(), &MainWindow::exportFinished);
     const QString path = folder_.filePath("relit.png");
