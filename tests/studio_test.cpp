@@ -500,13 +500,16 @@ class StudioTest : public QObject {
     QTest::keyClick(&view, Qt::Key_Right);
     drag_in_geometry_view(dot_of(1), QPoint(30, -20));
     Light typed = document().light(1);
-    typed.power *= 2.0f;
+    typed.radius = 0.1f;
     window_->change_light(1, typed);
+    window_->findChild<QDoubleSpinBox*>("stops")->setValue(1.0);
+    window_->findChild<QDoubleSpinBox*>("temperature")->setValue(3000.0);
     QVERIFY(window_->isWindowModified());
     QVERIFY(document().light(1).position != saved.lights[1].position);
 
-    QCOMPARE(window_->undo_stack().index(), 4);  // the saved move, the two keys (one step), the drag, the edit
-    for (int i = 0; i < 3; ++i) window_->undo_stack().undo();
+    // The saved move, the two keys (one step), the drag, the dialog, the stops, the temperature.
+    QCOMPARE(window_->undo_stack().index(), 6);
+    for (int i = 0; i < 5; ++i) window_->undo_stack().undo();
     QVERIFY(window_->undo_stack().isClean());
     QVERIFY(!window_->isWindowModified());
     QCOMPARE(rig_to_json(document().rig()), rig_to_json(saved));

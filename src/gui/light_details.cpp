@@ -48,7 +48,7 @@ QDoubleSpinBox* edit_field(const QString& name, double min, double max, int deci
   return box;
 }
 
-QWidget* row(std::initializer_list<QWidget*> widgets) {
+QWidget* field_row(std::initializer_list<QWidget*> widgets) {
   auto* row = new QWidget;
   auto* layout = new QHBoxLayout(row);
   layout->setContentsMargins(0, 0, 0, 0);
@@ -85,11 +85,11 @@ LightDetails::LightDetails(QWidget* parent)
   form->setLabelAlignment(Qt::AlignRight);
   form->addRow(tr("Type"), type_);
   form->addRow(tr("Colour"), colour_);
-  form->addRow(tr("Temperature"), row({temperature_, new QLabel(tr("tint")), tint_}));
+  form->addRow(tr("Temperature"), field_row({temperature_, new QLabel(tr("tint")), tint_}));
   form->addRow(tr("Position"), position_);
   form->addRow(tr("Direction"), direction_);
   form->addRow(tr("Power"), power_);
-  form->addRow(tr("Stops"), row({stops_, stops_reference_}));
+  form->addRow(tr("Stops"), field_row({stops_, stops_reference_}));
   connect(temperature_, &QDoubleSpinBox::valueChanged, this, &LightDetails::edit_temperature);
   connect(tint_, &QDoubleSpinBox::valueChanged, this, &LightDetails::edit_temperature);
   connect(stops_, &QDoubleSpinBox::valueChanged, this,
@@ -104,13 +104,15 @@ void LightDetails::edit_temperature() {
 void LightDetails::show_light(const Light* light) {
   reference_power_ = light ? power_of(*light) : 0.0f;
   temperature_colour_.reset();
+  temperature_->setEnabled(light);
+  tint_->setEnabled(light);
   if (light) {
     refresh_light(*light);
     return;
   }
   for (QLabel* label : {type_, colour_, position_, direction_, power_}) label->setText(QStringLiteral("\u2014"));
   stops_reference_->clear();
-  for (QDoubleSpinBox* box : {temperature_, tint_, stops_}) box->setEnabled(false);
+  stops_->setEnabled(false);
 }
 
 void LightDetails::refresh_light(const Light& l) {
@@ -129,10 +131,8 @@ void LightDetails::refresh_light(const Light& l) {
   // Showing values is not editing them: the fields stay quiet.
   const QSignalBlocker quiet_temperature(temperature_), quiet_tint(tint_), quiet_stops(stops_);
   if (l.color != temperature_colour_) {
-    const std::optional<ColourTemperature> temperature = temperature_of_colour(l.color);
-    temperature_->setEnabled(temperature.has_value());
-    tint_->setEnabled(temperature.has_value());
-    if (temperature) {
+    // Black has no temperature: the fields keep what they show, to set one from.
+    if (const std::optional<ColourTemperature> temperature = temperature_of_colour(l.color)) {
       temperature_->setValue(double(temperature->kelvin));
       tint_->setValue(double(temperature->tint));
     }
