@@ -692,6 +692,17 @@ class StudioTest : public QObject {
     show_converged_frame();
     QCOMPARE(differing_pixels(window_->photo_view().displayed_image(), both), 0);
 
+    // Ctrl+click on an eye solos its light, and again ends the solo; its switch stays.
+    auto* list = window_->findChild<QListView*>("light_list");
+    const auto* eye = qobject_cast<const EyeToggleDelegate*>(list->itemDelegate());
+    const QPoint spot_eye = eye->eye_rect(*list, list->model()->index(1, 0)).center();
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, Qt::ControlModifier, spot_eye);
+    QCOMPARE(document().solo(), 1);
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, Qt::ControlModifier, spot_eye);
+    QCOMPARE(document().solo(), -1);
+    QVERIFY(document().light(1).enabled);
+    QCOMPARE(window_->undo_stack().count(), 1);  // only the switch undone above
+
     // A light added while one is soloed is off like the others; deleting the soloed light ends the solo.
     window_->solo_light(1);
     window_->duplicate_light(0);  // appended after it

@@ -136,6 +136,11 @@ bool EyeToggleDelegate::editorEvent(QEvent* event, QAbstractItemModel* model, co
   if (view && event->type() == QEvent::MouseButtonRelease) {
     const auto* mouse = static_cast<QMouseEvent*>(event);
     if (mouse->button() == Qt::LeftButton && eye_rect(*view, index).contains(mouse->position().toPoint())) {
+      auto* lights = qobject_cast<LightListModel*>(model);
+      if (lights && mouse->modifiers() & Qt::ControlModifier) {
+        lights->request_solo_toggle(index.row());
+        return true;
+      }
       const bool on = index.data(Qt::CheckStateRole).toInt() == Qt::Checked;
       return model->setData(index, on ? Qt::Unchecked : Qt::Checked, Qt::CheckStateRole);
     }

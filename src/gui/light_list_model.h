@@ -4,7 +4,7 @@
 // others are grey. A click on the checkbox does not change the
 // document itself: it asks (enabledToggleRequested) so that the change goes
 // through the undo stack. EyeToggleDelegate makes a click on the eye do
-// what a click on the checkbox does.
+// what a click on the checkbox does, and a Ctrl+click on it solo the light.
 #pragma once
 
 #include <QAbstractListModel>
@@ -29,9 +29,11 @@ class LightListModel : public QAbstractListModel {
   QVariant data(const QModelIndex& index, int role) const override;
   bool setData(const QModelIndex& index, const QVariant& value, int role) override;
   Qt::ItemFlags flags(const QModelIndex& index) const override;
+  void request_solo_toggle(int row) { emit soloToggleRequested(row); }
 
  signals:
   void enabledToggleRequested(int row, bool enabled);
+  void soloToggleRequested(int row);
 
  private:
   LightingDocument* document_ = nullptr;
@@ -39,7 +41,7 @@ class LightListModel : public QAbstractListModel {
 
 // Draws the rows as QStyledItemDelegate does, and takes a click on a row's
 // eye icon as a click on its checkbox: the eye is the first thing a Blender
-// user clicks to hide a light.
+// user clicks to hide a light; Ctrl+click isolates it, as in Blender.
 class EyeToggleDelegate : public QStyledItemDelegate {
   Q_OBJECT
 

@@ -112,6 +112,7 @@ void MainWindow::connect_panels() {
   connect(&lights_->details(), &LightDetails::colourEdited, this, &MainWindow::set_selected_colour);
   connect(&lights_->details(), &LightDetails::powerEdited, this, &MainWindow::set_selected_power);
   connect(&lights_->model(), &LightListModel::enabledToggleRequested, this, &MainWindow::set_light_enabled);
+  connect(&lights_->model(), &LightListModel::soloToggleRequested, this, &MainWindow::toggle_solo);
   connect(lights_, &LightsPanel::lightSelected, this, &MainWindow::select_light);
   connect(lights_, &LightsPanel::newRequested, this, &MainWindow::new_light_dialog);
   connect(lights_, &LightsPanel::changeRequested, this, &MainWindow::change_light_dialog);
@@ -190,9 +191,8 @@ void MainWindow::make_menus() {
       edit->addAction(tr("&Change Light\u2026"), QKeySequence(Qt::Key_Return), this, &MainWindow::change_light_dialog);
   duplicate_light_action_ = edit->addAction(tr("D&uplicate Light"), QKeySequence(tr("Ctrl+D")), this,
                                             [this] { duplicate_light(selected_); });
-  solo_light_action_ = edit->addAction(tr("&Solo Light"), QKeySequence(tr("Ctrl+L")), this, [this] {
-    if (document_) solo_light(document_->solo() == selected_ ? -1 : selected_);
-  });
+  solo_light_action_ =
+      edit->addAction(tr("&Solo Light"), QKeySequence(tr("Ctrl+L")), this, [this] { toggle_solo(selected_); });
   solo_light_action_->setCheckable(true);
   delete_light_action_ = edit->addAction(tr("&Delete Light\tDel"), this, [this] { delete_light(selected_); });
   lights_->set_list_menu({change_light_action_, duplicate_light_action_, solo_light_action_, delete_light_action_});
@@ -386,6 +386,10 @@ void MainWindow::solo_light(int index) {
     statusBar()->showMessage(tr("Only \u201c%1\u201d is lit; Solo Light again (Ctrl+L) lights the others")
                                  .arg(QString::fromStdString(document_->light(index).name)),
                              8000);
+}
+
+void MainWindow::toggle_solo(int index) {
+  if (document_) solo_light(document_->solo() == index ? -1 : index);
 }
 
 void MainWindow::set_light_enabled(int index, bool enabled) {

@@ -67,6 +67,8 @@ class MainWindow : public QMainWindow {
   // Shows light `index` alone (-1: every light as the rig has it); not an
   // edit of the rig, so not on the undo stack.
   void solo_light(int index);
+  // Solos light `index`, or, if it is the one soloed, ends the solo.
+  void toggle_solo(int index);
   void set_light_enabled(int index, bool enabled);
   // The selected light's colour / power (a sun's irradiance); a run of these
   // edits of one light is one undo step.
