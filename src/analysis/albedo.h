@@ -21,6 +21,12 @@ struct AlbedoImages {
   Image albedo_coverage;             // albedo x coverage: 0 on the background, like albedo_gt.exr
   Vec3 mean = Vec3::Constant(0.5f);  // mean over reliable pixels; the default for unseen surfaces
   size_t filled = 0;                 // pixels filled from neighbours or the mean
+  // 1 per pixel near an edge of the illumination that the photo shows a few
+  // pixels away (IlluminationAlignment; with align_edges, the illumination
+  // divided by there was moved onto the photo's edges); empty: not looked for.
+  std::vector<uint8_t> edge_mismatch;
+  float edge_offset_px = 0.0f;  // how far the photo's edges lie from the illumination's, at most
+
   // Triangles the camera does not see whose albedo a probe shows (their
   // radiance in the probe over their illumination): for the light bounced
   // off them in later renders.

@@ -40,7 +40,8 @@ std::string analysis_images_hash(const std::function<fs::path(const char* name)>
 void expect_analysis_folder(const fs::path& folder) {
   if (force_outputs() || fs::exists(folder / "analysis.json")) return;
   for (const char* name :
-       {"illumination.exr", "background.exr", "albedo.exr", "albedo_surface.exr", "albedo.png", "mask.exr"})
+       {"illumination.exr", "background.exr", "albedo.exr", "albedo_surface.exr", "albedo.png", "mask.exr",
+        "unreliable.exr"})
     if (fs::exists(fs::symlink_status(folder / name)))
       throw InputError(folder.string(), "",
                        std::string("is not an analysis folder (no analysis.json) but holds ") + name +
@@ -58,6 +59,7 @@ void write_options(nlohmann::json& j, const AnalysisOptions& o) {
   j["interreflection"] = o.interreflection;
   j["bounce_source"] = to_string(o.bounce_source);
   j["denoise"] = o.denoise;
+  if (o.align_edges) j["align_edges"] = true;
   if (o.method == AnalysisMethod::radiosity) {
     j["node_samples"] = o.node_samples;
     j["gather_rays"] = o.gather_rays;
@@ -88,12 +90,20 @@ AnalysisOptions read_options(const JsonReader& r, const nlohmann::json& j) {
   o.interreflection = r.boolean(r.required(j, "", "interreflection"), "/interreflection");
   o.bounce_source = named("bounce_source", "albedo", parse_bounce_source);
   o.denoise = r.boolean(r.required(j, "", "denoise"), "/denoise");
+  if (const nlohmann::json* v = r.optional(j, "align_edges")) o.align_edges = r.boolean(*v, "/align_edges");
   if (o.method == AnalysisMethod::radiosity) {
     o.node_samples = count("node_samples");
     o.gather_rays = count("gather_rays");
     o.direct_per_pixel = r.string(r.required(j, "", "direct_light"), "/direct_light") == "pixels";
   }
   return o;
+}
+
+// 1 where the division was not trusted for its edges, 0 elsewhere.
+std::vector<float> unreliable_marks(const AlbedoImages& albedo) {
+  std::vector<float> marks(albedo.albedo.size(), 0.0f);
+  for (size_t i = 0; i < albedo.edge_mismatch.size() && i < marks.size(); ++i) marks[i] = albedo.edge_mismatch[i];
+  return marks;
 }
 
 }  // namespace
@@ -111,6 +121,7 @@ std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& optio
   // Added only for the photo's radiance, so that analyses made before it
   // existed stay valid.
   if (options.bounce_source == BounceSource::photo) hash.add_text(" bounce-source photo");
+  if (options.align_edges) hash.add_text(" align-edges");  // likewise
   // Added only for radiosity, so that path analyses made before the method
   // existed stay valid.
   if (options.method == AnalysisMethod::radiosity)
@@ -135,6 +146,7 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   write_exr(folder / "albedo_surface.exr", a.albedo.albedo);
   write_png(folder / "albedo.png", a.albedo.albedo_coverage);
   write_exr_scalar(folder / "mask.exr", a.coverage, w, h);
+  write_exr_scalar(folder / "unreliable.exr", unreliable_marks(a.albedo), w, h);
 
   nlohmann::json j;
   j["format"] = "relight-analysis/1";

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "analysis/illumination_alignment.h"
 #include "analysis/photo_radiance.h"
 #include "analysis/radiosity_illumination.h"
 #include "analysis/surface_albedo.h"
@@ -105,6 +106,29 @@ float residual_of(const Image& photo, const Image& albedo, const Image& illumina
   return total > 0.0 ? float(difference / total) : 0.0f;
 }
 
+constexpr float kLargeEdgeOffsetPx = 1.5f;  // above: warn (as IlluminationAlignment moves)
+
+void report_edge_offset(const Scene& scene, const AlbedoImages& albedo, const std::vector<float>& coverage,
+                        bool aligned) {
+  size_t moved = 0, seen = 0;
+  for (size_t i = 0; i < coverage.size(); ++i)
+    if (coverage[i] > 0.0f) {
+      ++seen;
+      moved += i < albedo.edge_mismatch.size() && albedo.edge_mismatch[i];
+    }
+  const double share = seen ? 100.0 * double(moved) / double(seen) : 0.0;
+  spdlog::info("albedo: the photo's edges lie up to {:.2f} px from the illumination's, on {:.2f} % of the view",
+               albedo.edge_offset_px, share);
+  if (albedo.edge_offset_px > kLargeEdgeOffsetPx)
+    spdlog::warn(
+        "{}: the photo's edges lie up to {:.1f} pixels from the geometry's: the camera is off. {} {:.1f} % of the "
+        "view (unreliable.exr); `relight register` matches the camera to the photo",
+        scene.path.string(), albedo.edge_offset_px,
+        aligned ? "The illumination's edges were moved onto the photo's on"
+                : "The albedo shows the edges as bright and dark lines (--align-edges moves them) on",
+        share);
+}
+
 }  // namespace
 
 Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& options,
@@ -152,6 +176,22 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     return render_with(albedo, photo_radiance.get(), bounce_options, label);
   };
 
+  // photo / illumination; with align_edges, the illumination's edges moved
+  // to where the photo shows them (a camera a few pixels off). Moved or not,
+  // the pixels where they disagree are marked.
+  const IlluminationAlignment alignment(scene.photo);
+  const auto divide = [&](const IlluminationImages& illumination) {
+    IlluminationAlignment::Aligned aligned = alignment.align(illumination.surface);
+    AlbedoImages albedo =
+        options.align_edges
+            ? recover_albedo(scene.photo, scene.photo_clipped, {std::move(aligned.illumination), illumination.background},
+                             gbuffer)
+            : recover_albedo(scene.photo, scene.photo_clipped, illumination, gbuffer);
+    albedo.edge_mismatch = std::move(aligned.moved);
+    albedo.edge_offset_px = aligned.motion_px;
+    return albedo;
+  };
+
   // Before any albedo is known, the surfaces the photo does not show reflect
   // a neutral mid grey when the photo gives the rest (white, the thesis's
   // initial illumination, otherwise).
@@ -161,7 +201,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     throw InputError(scene.path.string(), "/camera",
                      "no light reaches any surface the camera sees: is the camera inside the geometry, or every "
                      "light shut in?");
-  result.albedo = recover_albedo(scene.photo, scene.photo_clipped, result.illumination, gbuffer);
+  result.albedo = divide(result.illumination);
   result.iterations = 1;
   if (on_albedo) on_albedo(result.iterations, result.albedo);
 
@@ -185,7 +225,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   for (int it = 0; options.interreflection && it < passes; ++it) {
     const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, bounce, result.albedo.mean, result.albedo.unseen_triangles);
     IlluminationImages illum = render(bounce_albedo, "interreflection " + std::to_string(it + 1));
-    AlbedoImages next = recover_albedo(scene.photo, scene.photo_clipped, illum, gbuffer);
+    AlbedoImages next = divide(illum);
     next.unseen_triangles = result.albedo.unseen_triangles;
     const float change = mean_abs_change(next.albedo, bounce, result.coverage);
     for (size_t i = 0; i < bounce.size(); ++i) bounce.pixels[i] = 0.5f * (bounce.pixels[i] + next.albedo.pixels[i]);
@@ -209,7 +249,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     // division, from the albedo the photo's radiance gave.
     IlluminationImages back = render_with(final_albedo, nullptr, illumination_options(options), "rendered back");
     result.residual = residual_of(scene.photo, result.albedo.albedo, back.surface, result.coverage);
-    AlbedoImages closing = recover_albedo(scene.photo, scene.photo_clipped, back, gbuffer);
+    AlbedoImages closing = divide(back);
     closing.unseen_triangles = std::move(result.albedo.unseen_triangles);
     result.illumination = std::move(back);
     result.albedo = std::move(closing);
@@ -222,6 +262,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     const Image back = render_with(final_albedo, nullptr, back_options, "residual").surface;
     result.residual = residual_of(scene.photo, result.albedo.albedo, back, result.coverage);
   }
+  report_edge_offset(scene, result.albedo, result.coverage, options.align_edges);
   if (result.residual > kLargeResidual)
     spdlog::warn(
         "{}: albedo x illumination rendered back is {:.1f} % from the photo: the lights, probes or "

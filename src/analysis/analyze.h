@@ -48,6 +48,9 @@ struct AnalysisOptions {
   bool denoise = true;                                // filter the environment + interreflection part of each render
   int max_iterations = 4;                             // interreflection re-renders at most (bounce source albedo)
   float tolerance = 0.005f;                           // stop when the mean albedo change is below this
+  // Divide by the illumination with its edges moved onto the photo's
+  // (IlluminationAlignment); off: they are only found and reported.
+  bool align_edges = false;
   // With method radiosity, per node (paths_per_pixel is the path tracer's):
   int node_samples = 64;  // for the light from the lights and the environment
   int gather_rays = 256;  // for the light from the other surfaces

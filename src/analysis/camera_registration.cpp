@@ -10,6 +10,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "analysis/photo_edges.h"
 #include "core/error.h"
 #include "render/gbuffer.h"
 
@@ -17,94 +18,8 @@ namespace relight {
 
 namespace {
 
-// Canny's thresholds on the gradient of the smoothed log luminance: a step
-// of 0.15 in log luminance (a 16 % contrast) starts an edge, 0.06 continues
-// it. Sobel's 3x3 kernel reads a step of height H as about 4 H (less after
-// the smoothing); the gradient is stored at kGradientScale per unit.
-constexpr float kGradientScale = 100.0f;
-constexpr double kHighThreshold = 0.15 * 4 * 0.7 * kGradientScale, kLowThreshold = 0.06 * 4 * 0.7 * kGradientScale;
 // The mismatch reported: the mean edge distance capped at 8 pixels.
 constexpr float kReportCap = 8.0f;
-
-// One level of the pyramid: the photo's edges, each to a fraction of a pixel
-// (the peak of the gradient across it) with its normal, and for every pixel
-// the nearest of them. The residual of an image position is its distance
-// across the nearest edge (point to line: it slides along the edge freely),
-// in this level's pixels; `scale` full-resolution pixels make one of them.
-// Level pixel i is centred on full-resolution position scale * i + 0.5
-// (pyrDown keeps the even pixels' centres).
-struct EdgeField {
-  int scale = 1;
-  cv::Mat distance;                    // CV_32F, to the nearest edge pixel, this level's pixels
-  cv::Mat nearest;                     // CV_32S, the nearest edge pixel's index in position/normal
-  std::vector<Vec2> position, normal;  // full-resolution image positions; unit
-
-  size_t edge_pixels() const { return position.size(); }
-  // Signed, within +-cap; cap where no edge is within cap (or outside the photo).
-  float residual(const Vec2& full, float cap) const {
-    const int x = int(std::lround((full.x() - 0.5f) / scale)), y = int(std::lround((full.y() - 0.5f) / scale));
-    if (x < 0 || y < 0 || x >= distance.cols || y >= distance.rows || distance.at<float>(y, x) > cap) return cap;
-    const int k = nearest.at<int>(y, x);
-    return std::clamp(normal[size_t(k)].dot(full - position[size_t(k)]) / scale, -cap, cap);
-  }
-};
-
-cv::Mat log_luminance(const Image& photo) {
-  cv::Mat l(photo.height, photo.width, CV_32F);
-  double mean = 0.0;
-  for (const Vec3& p : photo.pixels) mean += std::max(0.0f, luminance(p));
-  const float floor = std::max(1e-8f, float(1e-3 * mean / std::max<size_t>(1, photo.pixels.size())));
-  for (int y = 0; y < photo.height; ++y)
-    for (int x = 0; x < photo.width; ++x)
-      l.at<float>(y, x) = std::log(std::max(floor, luminance(photo.pixels[size_t(y) * photo.width + x])));
-  return l;
-}
-
-float bilinear(const cv::Mat& m, float x, float y) {
-  x = std::clamp(x, 0.0f, float(m.cols - 1) - 1e-3f), y = std::clamp(y, 0.0f, float(m.rows - 1) - 1e-3f);
-  const int x0 = int(x), y0 = int(y);
-  const float fx = x - x0, fy = y - y0;
-  const float* r0 = m.ptr<float>(y0);
-  const float* r1 = m.ptr<float>(std::min(y0 + 1, m.rows - 1));
-  const int x1 = std::min(x0 + 1, m.cols - 1);
-  return (1 - fy) * ((1 - fx) * r0[x0] + fx * r0[x1]) + fy * ((1 - fx) * r1[x0] + fx * r1[x1]);
-}
-
-EdgeField edge_field(const cv::Mat& log_lum, int scale) {
-  cv::Mat smooth;
-  cv::GaussianBlur(log_lum, smooth, cv::Size(0, 0), 1.0);
-  cv::Mat gx, gy, dx, dy, edges, magnitude;
-  cv::Sobel(smooth, gx, CV_32F, 1, 0);
-  cv::Sobel(smooth, gy, CV_32F, 0, 1);
-  gx.convertTo(dx, CV_16S, kGradientScale);
-  gy.convertTo(dy, CV_16S, kGradientScale);
-  cv::Canny(dx, dy, edges, kLowThreshold, kHighThreshold, true);
-  cv::magnitude(gx, gy, magnitude);
-  EdgeField f;
-  f.scale = scale;
-  cv::Mat labels;
-  cv::distanceTransform(edges == 0, f.distance, labels, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
-  // Each edge pixel's own label names it; the peak of the gradient
-  // magnitude across it (a parabola through three samples) places it.
-  std::vector<int> index_of_label(size_t(edges.rows) * edges.cols + 2, -1);
-  for (int y = 0; y < edges.rows; ++y)
-    for (int x = 0; x < edges.cols; ++x) {
-      if (!edges.at<uint8_t>(y, x)) continue;
-      const Vec2 n = Vec2(gx.at<float>(y, x), gy.at<float>(y, x)).normalized();
-      const float m0 = magnitude.at<float>(y, x), mp = bilinear(magnitude, x + n.x(), y + n.y()),
-                  mm = bilinear(magnitude, x - n.x(), y - n.y());
-      const float curvature = mp - 2 * m0 + mm;
-      const float offset = curvature < 0 ? std::clamp(0.5f * (mm - mp) / curvature, -0.5f, 0.5f) : 0.0f;
-      index_of_label[size_t(labels.at<int>(y, x))] = int(f.position.size());
-      f.position.push_back(float(scale) * (Vec2(float(x), float(y)) + offset * n) + Vec2(0.5f, 0.5f));
-      f.normal.push_back(n);
-    }
-  f.nearest = cv::Mat(labels.size(), CV_32S);
-  for (int y = 0; y < labels.rows; ++y)
-    for (int x = 0; x < labels.cols; ++x)
-      f.nearest.at<int>(y, x) = std::max(0, index_of_label[size_t(labels.at<int>(y, x))]);
-  return f;
-}
 
 // The photo's edge fields, full resolution first, then halved each level.
 std::vector<EdgeField> edge_pyramid(const Image& photo, int levels) {

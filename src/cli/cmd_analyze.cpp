@@ -96,6 +96,10 @@ void add_analyze_command(CLI::App& app, Action& action) {
                   "radiance shown there (photo), or the albedo times its rendered light, iterated (albedo)")
       ->check(CLI::IsMember({"photo", "albedo"}))
       ->capture_default_str();
+  cmd->add_flag("--align-edges", args->options.align_edges,
+                "divide the photo by an illumination whose edges (shadows, silhouettes) are moved onto the photo's "
+                "where the camera is a few pixels off: no edge lines under a rig that replaces the lights, but a "
+                "rig that keeps them shows theirs; `relight register` is the remedy for both");
   cmd->add_flag("--save-renders", args->save_renders,
                 "also write the albedo each render recovered, albedo_render1.exr (white surfaces), "
                 "albedo_render2.exr, ... (to follow the interreflection iteration)");
