@@ -200,7 +200,7 @@ TEST_P(ReferenceRegistration, AlignedEdgesTolerateACameraALittleOff) {
       "aligned %.2f dB (edges %.2f px off, %.2f %% of the view)\n",
       GetParam(), exact.psnr, exact.edge_offset_px, 100 * exact.mismatch_share, off.psnr, aligned.psnr,
       aligned.edge_offset_px, 100 * aligned.mismatch_share);
-  EXPECT_LT(exact.edge_offset_px, 1.5f);
+  EXPECT_LT(exact.edge_offset_px, 1.0f);
   EXPECT_EQ(exact.mismatch_share, 0.0f);
   EXPECT_GT(aligned.edge_offset_px, 2.0f);
   EXPECT_GT(aligned.mismatch_share, 0.01f);

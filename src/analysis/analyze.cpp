@@ -106,7 +106,7 @@ float residual_of(const Image& photo, const Image& albedo, const Image& illumina
   return total > 0.0 ? float(difference / total) : 0.0f;
 }
 
-constexpr float kLargeEdgeOffsetPx = 1.5f;  // above: warn (as IlluminationAlignment moves)
+constexpr float kLargeEdgeOffsetPx = 1.0f;  // above: warn (where IlluminationAlignment moves)
 
 void report_edge_offset(const Scene& scene, const AlbedoImages& albedo, const std::vector<float>& coverage,
                         bool aligned) {

@@ -10,7 +10,7 @@ namespace relight {
 
 namespace {
 
-constexpr float kAlignedPx = 1.5f;              // a motion this small moves nothing (Canny places an edge to a pixel)
+constexpr float kAlignedPx = 1.0f;              // a motion this small moves nothing (Canny places an edge to a pixel)
 constexpr float kMaxMismatchShare = 1 / 80.0f;  // of the width (8 pixels of 640): the farthest match looked for
 constexpr float kBandMarginPx = 2.0f;           // the band reaches this beyond the photo's edge: the edges' own blur
 constexpr float kSameDirection = 0.87f;         // cos 30 degrees, between the two edges' gradients
