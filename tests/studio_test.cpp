@@ -774,22 +774,64 @@ class StudioTest : public QObject {
     expect_same_light(document().light(1), start);
   }
 
-  void clicking_the_photo_places_the_light_in_front_of_the_surface() {
+  // Ctrl+click, or a click with the Place Light tool, puts the selected
+  // light in front of the surface.
+  void placing_a_light_from_the_photo_is_a_tool_or_ctrl_click() {
     show_converged_frame();
     PhotoView& view = window_->photo_view();
     const QPoint centre = view.rect().center();
     const auto pixel = view.image_position(centre);
     QVERIFY(pixel.has_value());
-    QTest::mouseClick(&view, Qt::LeftButton, {}, centre);
     const Camera& camera = document().session().view().camera();
     SurfacePoint hit;
     QVERIFY(document().studio_scene().analysed->rays().intersect(
         camera.position(), camera.ray_direction(float(pixel->x()), float(pixel->y())), hit));
-    const Vec3 offset = document().light(0).position - hit.position;
-    // A fifth of the camera's distance out along the surface normal.
-    QVERIFY(std::abs(offset.norm() - 0.2f * hit.distance) < 1e-4f);
-    QVERIFY(offset.normalized().dot(hit.normal) > 0.9999f);
-    QCOMPARE(window_->undo_stack().undoText(), QStringLiteral("Place light"));
+    const auto expect_placed = [&] {
+      const Vec3 offset = document().light(0).position - hit.position;
+      // A fifth of the camera's distance out along the surface normal.
+      QVERIFY(std::abs(offset.norm() - 0.2f * hit.distance) < 1e-4f);
+      QVERIFY(offset.normalized().dot(hit.normal) > 0.9999f);
+      QCOMPARE(window_->undo_stack().undoText(), QStringLiteral("Place light"));
+    };
+    QTest::mouseClick(&view, Qt::LeftButton, Qt::ControlModifier, centre);
+    expect_placed();
+    window_->undo_stack().undo();
+    QCOMPARE(window_->undo_stack().index(), 0);
+
+    QVERIFY(window_->mode_text().startsWith("Select"));
+    window_->place_tool().trigger();
+    QVERIFY(window_->mode_text().startsWith("Place"));
+    QTest::mouseClick(&view, Qt::LeftButton, {}, centre);
+    expect_placed();
+    window_->place_tool().trigger();
+    QVERIFY(window_->mode_text().startsWith("Select"));
+  }
+
+  // A plain click on the photo (to focus the window, say) never moves a
+  // light: on a light it selects it, elsewhere it does nothing.
+  void a_plain_click_on_the_photo_selects_and_moves_nothing() {
+    QVERIFY(window_->open_rig(evening_));
+    show_converged_frame();
+    PhotoView& view = window_->photo_view();
+    const Camera& camera = document().session().view().camera();
+    int shown = -1;
+    std::optional<Vec2> at;
+    for (int i = 0; i < document().light_count() && shown < 0; ++i)
+      if (document().light(i).type != LightType::directional)
+        if ((at = camera.project(document().light(i).position))) shown = i;
+    QVERIFY(shown >= 0);
+    window_->select_light(-1);
+    const std::string rig_before = rig_to_json(document().rig());
+    const QPointF widget = view.widget_position(QPointF(at->x(), at->y()));
+    QTest::mouseClick(&view, Qt::LeftButton, {}, widget.toPoint());
+    QCOMPARE(window_->selected_light(), shown);
+    QCOMPARE(window_->undo_stack().count(), 0);
+    QCOMPARE(rig_to_json(document().rig()), rig_before);
+    // Far from every light: nothing selected anew, nothing moved.
+    window_->select_light(-1);
+    QTest::mouseClick(&view, Qt::LeftButton, {}, QPoint(2, 2));
+    QCOMPARE(window_->undo_stack().count(), 0);
+    QCOMPARE(rig_to_json(document().rig()), rig_before);
   }
 
   // With a light soloed the export is that light's own picture: less light

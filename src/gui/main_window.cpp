@@ -3,6 +3,7 @@
 #include <QCloseEvent>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QRegularExpression>
@@ -75,6 +76,8 @@ MainWindow::MainWindow(StudioOptions options, QWidget* parent)
   make_menus();
 
   task_status_ = new TaskStatus(task_);
+  mode_label_ = new QLabel(mode_text());
+  statusBar()->addPermanentWidget(mode_label_);
   statusBar()->addPermanentWidget(task_status_);
 
   connect(&undo_, &QUndoStack::cleanChanged, this, [this] { update_title(); });
@@ -118,7 +121,7 @@ void MainWindow::connect_panels() {
   connect(lights_, &LightsPanel::changeRequested, this, &MainWindow::change_light_dialog);
   connect(lights_, &LightsPanel::deleteRequested, this, [this] { delete_light(selected_); });
 
-  connect(&photo_panel_->photo_view(), &PhotoView::photoClicked, this, &MainWindow::place_selected_light);
+  connect(&photo_panel_->photo_view(), &PhotoView::photoClicked, this, &MainWindow::photo_clicked);
   connect(photo_panel_, &PhotoPanel::ambientEdited, this, [this](float scale) {
     if (document_ && scale != document_->rig().environment_scale)
       undo_.push(new EnvironmentScaleCommand(*document_, document_->rig().environment_scale, scale));
@@ -196,6 +199,14 @@ void MainWindow::make_menus() {
   solo_light_action_->setCheckable(true);
   delete_light_action_ = edit->addAction(tr("&Delete Light\tDel"), this, [this] { delete_light(selected_); });
   lights_->set_list_menu({change_light_action_, duplicate_light_action_, solo_light_action_, delete_light_action_});
+  edit->addSeparator();
+  // A click on the photo selects; placing is a tool picked on purpose, so
+  // that a click to focus the window never moves a light.
+  place_tool_action_ = edit->addAction(tr("&Place Light Tool"), QKeySequence(Qt::Key_P), this, [this] {
+    mode_label_->setText(mode_text());
+    statusBar()->showMessage(mode_text(), 5000);
+  });
+  place_tool_action_->setCheckable(true);
   // Insert and Enter act where the lights are handled, not in the spin boxes.
   for (QAction* action : {new_light_action_, change_light_action_}) {
     action->setShortcutContext(Qt::WidgetShortcut);
@@ -429,11 +440,46 @@ void MainWindow::move_selected_light(const Vec3& delta) {
                       [&](Light& light) { light.position += delta; });
 }
 
+QString MainWindow::mode_text() const {
+  return place_tool_action_ && place_tool_action_->isChecked()
+             ? tr("Place: a click on the photo puts the selected light there (P to stop)")
+             : tr("Select: click a light in the photo (Ctrl+click or P to place)");
+}
+
+void MainWindow::photo_clicked(const QPointF& image_position, Qt::KeyboardModifiers modifiers) {
+  if (place_tool_action_->isChecked() || modifiers.testFlag(Qt::ControlModifier)) {
+    place_selected_light(image_position);
+  } else if (const int light = light_at(image_position); light >= 0) {
+    select_light(light);
+  }
+}
+
+int MainWindow::light_at(const QPointF& image_position) const {
+  constexpr double kPickRadiusPx = 24.0;  // in the re-lit image's pixels
+  if (!document_) return -1;
+  const Camera& camera = document_->session().view().camera();
+  int nearest = -1;
+  double best = kPickRadiusPx;
+  for (int i = 0; i < document_->light_count(); ++i) {
+    const Light& light = document_->light(i);
+    if (light.type == LightType::directional) continue;
+    const auto shown = camera.project(light.position);
+    if (!shown) continue;
+    const double d = std::hypot(shown->x() - image_position.x(), shown->y() - image_position.y());
+    if (d < best) best = d, nearest = i;
+  }
+  return nearest;
+}
+
 void MainWindow::place_selected_light(const QPointF& image_position) {
   if (!document_) return;
   if (selected_ < 0) {
     statusBar()->showMessage(tr("Select a light first (or add one with New\u2026), then click where it should shine"),
                              5000);
+    return;
+  }
+  if (document_->light(selected_).type == LightType::directional) {
+    statusBar()->showMessage(tr("A sun has no position: change its direction with Change\u2026"), 5000);
     return;
   }
   const Camera& camera = document_->session().view().camera();
@@ -447,7 +493,7 @@ void MainWindow::place_selected_light(const QPointF& image_position) {
   const Light& before = document_->light(selected_);
   Light after = before;
   after.position = hit.position + 0.2f * hit.distance * hit.normal;
-  if (before.type != LightType::point) after.direction = -hit.normal;
+  if (before.type != LightType::point) after.direction = -hit.normal;  // spots and areas face it
   undo_.push(new EditLightCommand(*document_, selected_, before, after, tr("Place light")));
 }
 
@@ -470,7 +516,8 @@ bool MainWindow::refresh_frame() {
 void MainWindow::update_actions() {
   const bool open = document_ != nullptr && !busy();
   const bool has = open && selected_ >= 0;
-  for (QAction* a : {save_rig_action_, save_rig_as_action_, open_rig_action_, export_action_, new_light_action_})
+  for (QAction* a :
+       {save_rig_action_, save_rig_as_action_, open_rig_action_, export_action_, new_light_action_, place_tool_action_})
     a->setEnabled(open);
   for (QAction* a : {change_light_action_, duplicate_light_action_, solo_light_action_, delete_light_action_})
     a->setEnabled(has);

@@ -17,6 +17,7 @@
 #include "gui/light_commands.h"
 #include "gui/lighting_document.h"
 
+class QLabel;
 class QMenu;
 
 namespace relight::gui {
@@ -76,8 +77,17 @@ class MainWindow : public QMainWindow {
   void set_selected_power(float power);
   void move_selected_light(const Vec3& delta);
   // Puts the selected light in front of the surface under the re-lit
-  // image's pixel position (spots, areas and suns aim at it).
+  // image's pixel position (spots and areas aim at it; a sun, which has no
+  // position, is refused).
   void place_selected_light(const QPointF& image_position);
+  // A click on the photo: with the Place Light tool on, or Ctrl held, it
+  // places the selected light; else it selects the light drawn there.
+  void photo_clicked(const QPointF& image_position, Qt::KeyboardModifiers modifiers);
+  // The light (not a sun) whose position the camera shows within a few
+  // pixels of the re-lit image's position, the nearest; -1 if none.
+  int light_at(const QPointF& image_position) const;
+  QAction& place_tool() const { return *place_tool_action_; }
+  QString mode_text() const;  // what the status bar says a click on the photo does
 
   int selected_light() const { return selected_; }
   void select_light(int index);
@@ -132,7 +142,8 @@ class MainWindow : public QMainWindow {
   TaskStatus* task_status_;
   QAction *save_rig_action_, *save_rig_as_action_, *open_rig_action_, *export_action_;
   QAction *new_light_action_, *change_light_action_, *duplicate_light_action_, *solo_light_action_,
-      *delete_light_action_;
+      *delete_light_action_, *place_tool_action_;
+  QLabel* mode_label_;
 };
 
 }  // namespace relight::gui

@@ -13,7 +13,8 @@ PhotoView::PhotoView(QWidget* parent) : QWidget(parent) {
   setFocusPolicy(Qt::NoFocus);
   setAttribute(Qt::WA_OpaquePaintEvent);
   setCursor(Qt::CrossCursor);
-  setToolTip(tr("Click a surface to place the selected light in front of it"));
+  setToolTip(tr("Click a light to select it; Ctrl+click, or click with the Place Light tool (P), to put the "
+                "selected light in front of the surface"));
 }
 
 void PhotoView::set_photo(std::shared_ptr<const Image> photo) {
@@ -66,6 +67,13 @@ std::optional<QPointF> PhotoView::image_position(const QPointF& widget_point) co
                  (widget_point.y() - r.top()) * displayed_.height() / r.height());
 }
 
+QPointF PhotoView::widget_position(const QPointF& image_position) const {
+  const QRectF r = picture_rect();
+  if (r.isEmpty()) return {};
+  return QPointF(r.left() + image_position.x() * r.width() / displayed_.width(),
+                 r.top() + image_position.y() * r.height() / displayed_.height());
+}
+
 void PhotoView::paintEvent(QPaintEvent*) {
   QPainter painter(this);
   painter.fillRect(rect(), QColor(28, 28, 30));
@@ -98,7 +106,7 @@ void PhotoView::paintEvent(QPaintEvent*) {
 
 void PhotoView::mousePressEvent(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton) return;
-  if (const auto p = image_position(event->position())) emit photoClicked(*p);
+  if (const auto p = image_position(event->position())) emit photoClicked(*p, event->modifiers());
 }
 
 }  // namespace relight::gui

@@ -1,7 +1,8 @@
 // PhotoView (thesis 6.2.2): the re-lit photo, through an exposure, with a
 // before/after split against the original photo (left of the split: the
-// photo as taken). A click on the picture reports the pixel, for placing a
-// light in front of what was clicked.
+// photo as taken). A click on the picture reports the pixel and the keys
+// held, for selecting the light there or placing one in front of what was
+// clicked.
 #pragma once
 
 #include <QImage>
@@ -32,12 +33,14 @@ class PhotoView : public QWidget {
   const QImage& displayed_image() const { return displayed_; }
   // The pixel position in the re-lit image under a widget point, if on it.
   std::optional<QPointF> image_position(const QPointF& widget_point) const;
+  // The widget point showing a position in the re-lit image (its inverse).
+  QPointF widget_position(const QPointF& image_position) const;
 
   QSize sizeHint() const override { return {800, 600}; }
 
  signals:
   // A click on the picture, in the re-lit image's pixels (continuous).
-  void photoClicked(const QPointF& position);
+  void photoClicked(const QPointF& position, Qt::KeyboardModifiers modifiers);
 
  protected:
   void paintEvent(QPaintEvent* event) override;
