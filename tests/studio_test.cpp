@@ -802,6 +802,7 @@ class StudioTest : public QObject {
     window_->place_tool().trigger();
     QVERIFY(window_->mode_text().startsWith("Place"));
     QTest::mouseClick(&view, Qt::LeftButton, {}, centre);
+    keep_picture("place_tool", *window_);
     expect_placed();
     window_->place_tool().trigger();
     QVERIFY(window_->mode_text().startsWith("Select"));

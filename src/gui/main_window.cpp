@@ -77,6 +77,7 @@ MainWindow::MainWindow(StudioOptions options, QWidget* parent)
 
   task_status_ = new TaskStatus(task_);
   mode_label_ = new QLabel(mode_text());
+  mode_label_->setMinimumWidth(mode_label_->fontMetrics().horizontalAdvance(mode_text()) + 16);
   statusBar()->addPermanentWidget(mode_label_);
   statusBar()->addPermanentWidget(task_status_);
 
@@ -202,10 +203,8 @@ void MainWindow::make_menus() {
   edit->addSeparator();
   // A click on the photo selects; placing is a tool picked on purpose, so
   // that a click to focus the window never moves a light.
-  place_tool_action_ = edit->addAction(tr("&Place Light Tool"), QKeySequence(Qt::Key_P), this, [this] {
-    mode_label_->setText(mode_text());
-    statusBar()->showMessage(mode_text(), 5000);
-  });
+  place_tool_action_ = edit->addAction(tr("&Place Light Tool"), QKeySequence(Qt::Key_P), this,
+                                       [this] { mode_label_->setText(mode_text()); });
   place_tool_action_->setCheckable(true);
   // Insert and Enter act where the lights are handled, not in the spin boxes.
   for (QAction* action : {new_light_action_, change_light_action_}) {
@@ -442,8 +441,8 @@ void MainWindow::move_selected_light(const Vec3& delta) {
 
 QString MainWindow::mode_text() const {
   return place_tool_action_ && place_tool_action_->isChecked()
-             ? tr("Place: a click on the photo puts the selected light there (P to stop)")
-             : tr("Select: click a light in the photo (Ctrl+click or P to place)");
+             ? tr("Place: a click puts the selected light there (P ends)")
+             : tr("Select: a click picks a light (Ctrl+click or P places)");
 }
 
 void MainWindow::photo_clicked(const QPointF& image_position, Qt::KeyboardModifiers modifiers) {
