@@ -748,6 +748,39 @@ class StudioTest : public QObject {
     QVERIFY(differing_pixels(photo, relit) > 0);
   }
 
+  // The first view shows the lights and the camera; Frame Selected puts
+  // the selected light in the middle, nearer; Frame All the whole geometry.
+  void the_views_frame_what_the_camera_sees_the_selected_light_and_all() {
+    QVERIFY(window_->open_rig(evening_));
+    GeometryView& view = window_->geometry_view();
+    view.reset_orbit();
+    const QRectF inside = QRectF(view.rect());
+    for (int i = 0; i < document().light_count(); ++i) {
+      const auto dot = view.project(view.marker_position(document().light(i)));
+      QVERIFY(dot && inside.contains(*dot));
+    }
+    const auto camera = view.project(document().scene().camera.position());
+    QVERIFY(camera && inside.contains(*camera));
+
+    window_->select_light(1);
+    const auto before = view.project(view.marker_position(document().light(1)));
+    view.frame_selected();
+    const auto framed = view.project(view.marker_position(document().light(1)));
+    QVERIFY(framed.has_value());
+    QVERIFY(QLineF(*framed, inside.center()).length() < 1.0);
+    QVERIFY(QLineF(*before, inside.center()).length() > 1.0);
+    QCOMPARE(window_->undo_stack().count(), 0);
+
+    view.frame_all();
+    const Eigen::AlignedBox3f bounds = document().scene().mesh.bounds();
+    const auto middle = view.project(bounds.center());
+    QVERIFY(middle && QLineF(*middle, inside.center()).length() < 1.0);
+    for (int corner = 0; corner < 8; ++corner) {
+      const auto c = view.project(bounds.corner(Eigen::AlignedBox3f::CornerType(corner)));
+      QVERIFY(c && inside.contains(*c));
+    }
+  }
+
   void clicking_a_dot_selects_its_light_and_dragging_moves_it() {
     QVERIFY(window_->open_rig(evening_));
     GeometryView& view = window_->geometry_view();

@@ -5,7 +5,13 @@
 #include <QPainter>
 #include <QWheelEvent>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
+
+#include "analysis/analysed_scene.h"
+#include "gui/studio_scene.h"
+#include "render/gbuffer.h"
 
 namespace relight::gui {
 
@@ -38,6 +44,34 @@ QColor dot_colour(bool selected, bool enabled) {
   return enabled ? QColor(40, 110, 230) : QColor(240, 200, 30);
 }
 
+// What the photo's camera sees, per axis between the 2nd and 98th
+// percentile of its pixels' surfaces, with the lights that have a position
+// and the camera.
+Eigen::AlignedBox3f seen_bounds(const LightingDocument& document) {
+  constexpr double kTail = 0.02;
+  const GBuffer& g = document.studio_scene().analysed->gbuffer();
+  std::array<std::vector<float>, 3> axes;
+  for (int y = 0; y < g.height(); ++y)
+    for (int x = 0; x < g.width(); ++x)
+      if (const GBufferSample& s = g.central(x, y); s.hit)
+        for (int a = 0; a < 3; ++a) axes[size_t(a)].push_back(s.surface.position[a]);
+  Eigen::AlignedBox3f box;
+  if (!axes[0].empty()) {
+    Vec3 lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      std::vector<float>& v = axes[size_t(a)];
+      std::sort(v.begin(), v.end());
+      lo[a] = v[size_t(kTail * double(v.size() - 1))];
+      hi[a] = v[size_t((1.0 - kTail) * double(v.size() - 1))];
+    }
+    box.extend(lo), box.extend(hi);
+  }
+  for (int i = 0; i < document.light_count(); ++i)
+    if (document.light(i).type != LightType::directional) box.extend(document.light(i).position);
+  box.extend(document.scene().camera.position());
+  return box;
+}
+
 }  // namespace
 
 GeometryView::GeometryView(QWidget* parent) : QWidget(parent) {
@@ -58,9 +92,9 @@ void GeometryView::set_document(LightingDocument* document) {
     const Vec3 forward = scene.camera.forward();
     const Vec3 horizontal = forward - forward.dot(world_up_) * world_up_;
     reference_heading_ = horizontal.norm() > 1e-4f ? Vec3(horizontal.normalized()) : any_perpendicular(world_up_);
-    const Eigen::AlignedBox3f bounds = scene.mesh.bounds();
-    centre_ = bounds.isEmpty() ? scene.camera.spec().look_at : Vec3(bounds.center());
-    scene_size_ = bounds.isEmpty() ? 1.0f : std::max(bounds.diagonal().norm(), 1e-3f);
+    const Eigen::AlignedBox3f seen = seen_bounds(*document_);
+    seen_centre_ = seen.isEmpty() ? scene.camera.spec().look_at : Vec3(seen.center());
+    scene_size_ = seen.isEmpty() ? 1.0f : std::max(seen.diagonal().norm(), 1e-3f);
     move_step_ = nice_step(scene_size_ / 100.0f);
     for (auto signal : {&LightingDocument::lightChanged, &LightingDocument::lightInserted,
                         &LightingDocument::lightRemoved})
@@ -84,7 +118,24 @@ void GeometryView::set_orbit(float yaw_deg, float pitch_deg, float distance) {
   geometry_changed();
 }
 
-void GeometryView::reset_orbit() { set_orbit(0.0f, 35.0f, 1.3f * scene_size_); }
+void GeometryView::reset_orbit() {
+  centre_ = seen_centre_;
+  set_orbit(0.0f, 35.0f, 1.3f * scene_size_);
+}
+
+void GeometryView::frame_all() {
+  if (!document_) return;
+  const Eigen::AlignedBox3f bounds = document_->scene().mesh.bounds();
+  if (bounds.isEmpty()) return;
+  centre_ = bounds.center();
+  set_orbit(yaw_deg_, pitch_deg_, 1.3f * bounds.diagonal().norm());
+}
+
+void GeometryView::frame_selected() {
+  if (!document_ || selected_ < 0 || selected_ >= document_->light_count()) return;
+  centre_ = marker_position(document_->light(selected_));
+  set_orbit(yaw_deg_, pitch_deg_, 0.4f * scene_size_);
+}
 
 Vec3 GeometryView::heading() const {
   const float yaw = radians(yaw_deg_);

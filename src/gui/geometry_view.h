@@ -30,7 +30,13 @@ class GeometryView : public QWidget {
   // The orbit: degrees about the world up from the photo camera's heading,
   // degrees looking down, metres from the scene's centre.
   void set_orbit(float yaw_deg, float pitch_deg, float distance);
+  // The first view: what the photo's camera sees (the middle 96 % of its
+  // pixels' surfaces along each axis, so that a ground to the horizon does
+  // not fill the view), with the lights and the camera, from above the
+  // camera's heading.
   void reset_orbit();
+  void frame_all();       // the whole geometry
+  void frame_selected();  // the selected light, nearer, from where the view looks
 
   // The frame the keys move lights in: world up, and this view's heading
   // made horizontal (forward) with its horizontal right.
@@ -85,7 +91,10 @@ class GeometryView : public QWidget {
   LightingDocument* document_ = nullptr;
   int selected_ = -1;
   Vec3 world_up_ = Vec3::UnitZ(), reference_heading_ = Vec3::UnitY(), centre_ = Vec3::Zero();
+  // scene_size_: the size of what the camera sees, which sets the steps,
+  // the markers and the first view's distance.
   float scene_size_ = 1.0f, move_step_ = 0.01f;
+  Vec3 seen_centre_ = Vec3::Zero();
   float yaw_deg_ = 0.0f, pitch_deg_ = 35.0f, distance_ = 1.0f;
   QImage mesh_image_;  // the shaded mesh for the current orbit and size
   enum class Drag { none, orbit, light } drag_ = Drag::none;

@@ -213,7 +213,15 @@ void MainWindow::make_menus() {
   }
 
   QMenu* view = menuBar()->addMenu(tr("&View"));
-  view->addAction(tr("&Reset Geometry View"), this, [this] { lights_->geometry_view().reset_orbit(); });
+  GeometryView& geometry = lights_->geometry_view();
+  // Single keys, for the geometry view only (they are text elsewhere).
+  for (QAction* action :
+       {view->addAction(tr("&Camera's View"), QKeySequence(Qt::Key_C), &geometry, &GeometryView::reset_orbit),
+        view->addAction(tr("Frame &All"), QKeySequence(Qt::Key_A), &geometry, &GeometryView::frame_all),
+        view->addAction(tr("Frame &Selected"), QKeySequence(Qt::Key_F), &geometry, &GeometryView::frame_selected)}) {
+    action->setShortcutContext(Qt::WidgetShortcut);
+    geometry.addAction(action);
+  }
 }
 
 void MainWindow::run_task(const QString& label, BackgroundTask::Work work, std::function<void(const QString&)> done) {
