@@ -44,11 +44,11 @@ QColor dot_colour(bool selected, bool enabled) {
   return enabled ? QColor(40, 110, 230) : QColor(240, 200, 30);
 }
 
-// What the photo's camera sees, per axis between the 2nd and 98th
+// What the photo's camera sees, per axis between the 10th and 90th
 // percentile of its pixels' surfaces, with the lights that have a position
 // and the camera.
 Eigen::AlignedBox3f seen_bounds(const LightingDocument& document) {
-  constexpr double kTail = 0.02;
+  constexpr double kTail = 0.10;
   const GBuffer& g = document.studio_scene().analysed->gbuffer();
   std::array<std::vector<float>, 3> axes;
   for (int y = 0; y < g.height(); ++y)
@@ -70,6 +70,21 @@ Eigen::AlignedBox3f seen_bounds(const LightingDocument& document) {
     if (document.light(i).type != LightType::directional) box.extend(document.light(i).position);
   box.extend(document.scene().camera.position());
   return box;
+}
+
+// The part of a triangle at least `near` in front of the eye (clipped by
+// Sutherland and Hodgman's method): a ground reaching behind the viewpoint
+// is still drawn where it is in front.
+std::vector<Vec3> in_front_of(const Vec3& eye, const Vec3& forward, const std::array<Vec3, 3>& triangle,
+                              float near) {
+  std::vector<Vec3> kept;
+  for (size_t i = 0; i < 3; ++i) {
+    const Vec3 &p = triangle[i], &q = triangle[(i + 1) % 3];
+    const float dp = (p - eye).dot(forward) - near, dq = (q - eye).dot(forward) - near;
+    if (dp >= 0.0f) kept.push_back(p);
+    if ((dp >= 0.0f) != (dq >= 0.0f)) kept.push_back(p + dp / (dp - dq) * (q - p));
+  }
+  return kept;
 }
 
 }  // namespace
@@ -218,14 +233,14 @@ void GeometryView::draw_mesh() {
     if (n.dot(scene.camera.position() - centroid) < 0.0f) n = -n;
     if (n.dot(e.position - centroid) <= 0.0f) continue;
     QPolygonF polygon;
-    for (const Vec3* p : {&a, &b, &c}) {
-      const auto q = project(*p);
-      if (!q) break;
-      polygon << *q;
-    }
-    if (polygon.size() != 3) continue;
+    // Drawn farthest first by their farthest point: a ground's huge
+    // triangles, reaching out of the view, go under what stands on them.
+    float farthest = 0.0f;
+    for (const Vec3& p : in_front_of(e.position, e.forward, {a, b, c}, 2e-3f * scene_size_))
+      if (const auto q = project(p)) polygon << *q, farthest = std::max(farthest, (p - e.position).dot(e.forward));
+    if (polygon.size() < 3) continue;
     const int shade = int(90.0f + 130.0f * std::abs(n.dot(key)));
-    faces.push_back({(centroid - e.position).dot(e.forward), polygon, QColor(shade, shade, int(shade * 0.97f))});
+    faces.push_back({farthest, polygon, QColor(shade, shade, int(shade * 0.97f))});
   }
   std::sort(faces.begin(), faces.end(), [](const Face& x, const Face& y) { return x.depth > y.depth; });
   QPainter painter(&mesh_image_);

@@ -30,7 +30,7 @@ class GeometryView : public QWidget {
   // The orbit: degrees about the world up from the photo camera's heading,
   // degrees looking down, metres from the scene's centre.
   void set_orbit(float yaw_deg, float pitch_deg, float distance);
-  // The first view: what the photo's camera sees (the middle 96 % of its
+  // The first view: what the photo's camera sees (the middle 80 % of its
   // pixels' surfaces along each axis, so that a ground to the horizon does
   // not fill the view), with the lights and the camera, from above the
   // camera's heading.
