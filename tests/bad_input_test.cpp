@@ -42,6 +42,16 @@ Image photo_with(int x, int y, float value) {
   return img;
 }
 
+// A rig's new environment: an 8 x 4 equirect image, Blender's default frame.
+json sky(const std::string& image) {
+  return {{"image", image}, {"mapping", "equirect"}, {"forward", {1, 0, 0}}, {"up", {0, 0, 1}}};
+}
+Image sky_with(int x, int y, float value) {
+  Image img(8, 4, Vec3(0.5f, 0.6f, 0.8f));
+  img.at(x, y).y() = value;
+  return img;
+}
+
 // Overwrites the data window (and display window) in an EXR header: the image
 // then claims (xmax+1) x (ymax+1) pixels whatever the file holds. Zeros are
 // appended where the chunk offsets of that many rows would be (16 rows a
@@ -327,6 +337,23 @@ const std::vector<Row>& catalogue() {
        "/format: expected \"relight-rig/1\""},
       {"RigEnvironmentScaleNegative", [](SceneFolder& f) { f.rig["environment_scale"] = -1; }, Command::render,
        "rig.json", "/environment_scale: expected a number in"},
+      {"RigEnvironmentImageMissing", [](SceneFolder& f) { f.rig["environment"] = sky("sky.exr"); }, Command::render,
+       "sky.exr", "file not found"},
+      {"RigEnvironmentImageNaN",
+       [](SceneFolder& f) { write_exr(f / "sky.exr", sky_with(3, 1, std::numeric_limits<float>::quiet_NaN())); f.rig["environment"] = sky("sky.exr"); },
+       Command::render, "sky.exr", "pixel (3, 1): holds a NaN or infinite value"},
+      {"RigEnvironmentImageNegative",
+       [](SceneFolder& f) { write_exr(f / "sky.exr", sky_with(3, 1, -5.0f)); f.rig["environment"] = sky("sky.exr"); },
+       Command::render, "sky.exr", "pixel (3, 1): holds the negative value -5"},
+      {"RigEnvironmentMappingUnknown",
+       [](SceneFolder& f) { write_exr(f / "sky.exr", sky_with(0, 0, 1.0f)); f.rig["environment"] = sky("sky.exr"); f.rig["environment"]["mapping"] = "cube"; },
+       Command::render, "rig.json", "/environment/mapping: expected \"equirect\" or \"mirrorball\", found \"cube\""},
+      {"RigEnvironmentForwardAlongUp",
+       [](SceneFolder& f) { write_exr(f / "sky.exr", sky_with(0, 0, 1.0f)); f.rig["environment"] = sky("sky.exr"); f.rig["environment"]["forward"] = {0, 0, -3}; },
+       Command::render, "rig.json", "/environment/up: must not be parallel to forward"},
+      {"RigEnvironmentColorAndImage",
+       [](SceneFolder& f) { write_exr(f / "sky.exr", sky_with(0, 0, 1.0f)); f.rig["environment"] = sky("sky.exr"); f.rig["environment"]["color"] = {1, 1, 1}; },
+       Command::render, "rig.json", "/environment: give either \"color\" or \"image\", not both"},
       {"RigLightsAString", [](SceneFolder& f) { f.rig["lights"] = "all"; }, Command::render, "rig.json",
        "/lights: expected an array"},
       {"RigSpotDirectionZero", [](SceneFolder& f) { f.rig["lights"][0]["direction"] = {0, 0, 0}; }, Command::render,

@@ -107,6 +107,30 @@ TEST(Cli, AnalyseRigRenderGivesBackThePhoto) {
   EXPECT_GE(db, 40.0);
 }
 
+// A rig's new environment through `relight render`: where the room's photo
+// shows no geometry, the re-lit image shows the new sky x environment_scale.
+TEST(Cli, RenderShowsTheRigsNewSkyPastTheGeometry) {
+  const fs::path dir = temp_folder("new_sky");
+  const std::string scene = (kRoom / "scene.json").string();
+  ASSERT_EQ(relight_run({"analyze", scene, "-o", (dir / "analysis").string(), "--spp", "8"}), 0);
+  relight::test::write_text(dir / "sky.json", R"({"format": "relight-rig/1", "environment": {"color": [0.3, 0.5, 0.7]},
+                                                "environment_scale": 2, "lights": []})");
+  ASSERT_EQ(relight_run({"render", scene, "--rig", (dir / "sky.json").string(), "--analysis",
+                         (dir / "analysis").string(), "-o", (dir / "sky.exr").string()}),
+            0);
+  const relight::Image relit = relight::read_image(dir / "sky.exr");
+  int w = 0, h = 0;
+  const std::vector<float> mask = relight::read_scalar_image(dir / "analysis" / "mask.exr", w, h);  // its coverage
+  ASSERT_EQ(mask.size(), relit.size());
+  int background = 0;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    if (mask[i] != 0.0f) continue;
+    EXPECT_LT((relit.pixels[i] - relight::Vec3(0.6f, 1.0f, 1.4f)).cwiseAbs().maxCoeff(), 1e-3f) << "pixel " << i;
+    ++background;
+  }
+  EXPECT_GT(background, 0);
+}
+
 TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
   const fs::path dir = temp_folder("renders");
   ASSERT_EQ(relight_run({"analyze", (kRoom / "scene.json").string(), "-o", dir.string(), "--spp", "8", "--save-renders",

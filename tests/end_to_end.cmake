@@ -23,3 +23,8 @@ add_executable(fit_test fit_test.cpp)
 target_link_libraries(fit_test PRIVATE relight_analysis GTest::gtest_main)
 target_compile_definitions(fit_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 gtest_discover_tests(fit_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900 LABELS reference)
+
+# A rig's new environment on a floor under a sky.
+add_executable(new_sky_test new_sky_test.cpp)
+target_link_libraries(new_sky_test PRIVATE relight_relight GTest::gtest_main)
+gtest_discover_tests(new_sky_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)

@@ -593,6 +593,98 @@ TEST_F(RigFile, EnvironmentScaleAsString) {
   EXPECT_MENTIONS(load_error(), rig_path().string(), "/environment_scale", "number");
 }
 
+// ------------------------------------------------------------ a rig's new environment
+
+TEST_F(RigFile, WithoutEnvironmentTheSceneKeepsItsOwn) {
+  write_text(rig_path(), rig.dump(2));
+  EXPECT_FALSE(load_rig(rig_path()).environment.has_value());
+}
+
+TEST_F(RigFile, ConstantEnvironmentLoads) {
+  rig["environment"] = {{"color", {0.2, 0.3, 0.4}}};
+  write_text(rig_path(), rig.dump(2));
+  const Rig r = load_rig(rig_path());
+  ASSERT_TRUE(r.environment.has_value());
+  EXPECT_EQ(r.environment->color, Vec3(0.2f, 0.3f, 0.4f));
+  EXPECT_EQ(r.environment->image, nullptr);
+}
+
+// The image is relative to the rig's folder, mapped as a probe's.
+TEST_F(RigFile, ImageEnvironmentLoads) {
+  fs::create_directories(dir / "skies");
+  write_exr(dir / "skies" / "sky.exr", Image(8, 4, Vec3(1.0f, 2.0f, 3.0f)));
+  rig["environment"] = {{"image", "skies/sky.exr"}, {"mapping", "equirect"}, {"forward", {2, 0, 0}}, {"up", {0, 0, 1}}};
+  write_text(rig_path(), rig.dump(2));
+  const Rig r = load_rig(rig_path());
+  ASSERT_TRUE(r.environment && r.environment->image);
+  const Probe& sky = *r.environment->image;
+  EXPECT_EQ(fs::path(sky.path), dir / "skies" / "sky.exr");
+  EXPECT_EQ(sky.mapping, ProbeMapping::equirect);
+  EXPECT_EQ(sky.forward, Vec3(1, 0, 0));
+  EXPECT_EQ(sky.up, Vec3(0, 0, 1));
+  EXPECT_EQ(sky.image.width, 8);
+  EXPECT_EQ(sky.image.at(3, 2), Vec3(1.0f, 2.0f, 3.0f));
+}
+
+// Saved elsewhere (the studio's Save Rig As), the image path is rewritten
+// relative to the new rig; the frame and the colour come back unchanged.
+TEST_F(RigFile, EnvironmentRoundTrips) {
+  write_exr(dir / "sky.exr", Image(4, 4, Vec3(0.5f, 0.5f, 0.5f)));
+  rig["environment"] = {{"image", "sky.exr"}, {"mapping", "mirrorball"}, {"forward", {0, 1, 0}}, {"up", {0, 0, 1}}};
+  write_text(rig_path(), rig.dump(2));
+  const Rig r = load_rig(rig_path());
+  fs::create_directories(dir / "saved");
+  save_rig(dir / "saved" / "rig.json", r);
+  EXPECT_EQ(json::parse(read_text(dir / "saved" / "rig.json"))["environment"]["image"], "../sky.exr");
+  const Rig back = load_rig(dir / "saved" / "rig.json");
+  ASSERT_TRUE(back.environment && back.environment->image);
+  EXPECT_EQ(fs::path(back.environment->image->path).lexically_normal(), dir / "sky.exr");
+  EXPECT_EQ(back.environment->image->mapping, ProbeMapping::mirrorball);
+  EXPECT_EQ(back.environment->image->forward, Vec3(0, 1, 0));
+
+  Rig constant = r;
+  constant.environment = RigEnvironment{Vec3(0.25f, 0.5f, 1.0f), nullptr};
+  save_rig(dir / "constant.json", constant);
+  const Rig constant_back = load_rig(dir / "constant.json");
+  ASSERT_TRUE(constant_back.environment.has_value());
+  EXPECT_EQ(constant_back.environment->color, Vec3(0.25f, 0.5f, 1.0f));
+  EXPECT_EQ(constant_back.environment->image, nullptr);
+}
+
+TEST_F(RigFile, EnvironmentWithBothColorAndImage) {
+  write_exr(dir / "sky.exr", Image(8, 4, Vec3::Ones()));
+  rig["environment"] = {{"color", {1, 1, 1}}, {"image", "sky.exr"}, {"mapping", "equirect"},
+                        {"forward", {1, 0, 0}}, {"up", {0, 0, 1}}};
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/environment", "not both");
+}
+
+TEST_F(RigFile, EnvironmentMissingImage) {
+  rig["environment"] = {{"image", "absent.exr"}, {"mapping", "equirect"}, {"forward", {1, 0, 0}}, {"up", {0, 0, 1}}};
+  EXPECT_MENTIONS(load_error(), (dir / "absent.exr").string(), "not found");
+}
+
+TEST_F(RigFile, EnvironmentUnknownMapping) {
+  write_exr(dir / "sky.exr", Image(8, 4, Vec3::Ones()));
+  rig["environment"] = {{"image", "sky.exr"}, {"mapping", "cubemap"}, {"forward", {1, 0, 0}}, {"up", {0, 0, 1}}};
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/environment/mapping", "cubemap");
+}
+
+TEST_F(RigFile, EnvironmentForwardParallelToUp) {
+  write_exr(dir / "sky.exr", Image(8, 4, Vec3::Ones()));
+  rig["environment"] = {{"image", "sky.exr"}, {"mapping", "equirect"}, {"forward", {0, 0, 2}}, {"up", {0, 0, 1}}};
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/environment/up", "parallel");
+}
+
+TEST_F(RigFile, EnvironmentNegativeColor) {
+  rig["environment"] = {{"color", {0.5, -0.1, 0.5}}};
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/environment/color/1");
+}
+
+TEST_F(RigFile, EnvironmentNeitherColorNorImage) {
+  rig["environment"] = json::object();
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/environment", "color", "image");
+}
+
 TEST_F(RigFile, ZeroPower) {
   rig["lights"][1]["power"] = 0;
   EXPECT_MENTIONS(load_error(), rig_path().string(), "/lights/1/power");

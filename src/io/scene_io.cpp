@@ -154,31 +154,75 @@ CameraSpec parse_camera(const JsonReader& r, const json& v, GeometryContents& ge
   return c;
 }
 
-Probe parse_probe(const JsonReader& r, const json& v, const std::string& ptr, const fs::path& scene_path) {
-  r.expect_object(v, ptr);
+// An image mapped as a probe's: `image` (relative to the JSON file), `mapping`,
+// `forward` and `up` of the object at `ptr`, the image read and checked;
+// `what` ("probe", "environment") names it in messages.
+Probe parse_mapped_image(const JsonReader& r, const json& v, const std::string& ptr, const fs::path& json_path,
+                         const char* what) {
   Probe p;
-  p.path = resolve(scene_path, r.string(r.required(v, ptr, "image"), ptr + "/image")).string();
-  check_read_inside(scene_path.parent_path(), scene_path, ptr + "/image", p.path);
+  p.path = resolve(json_path, r.string(r.required(v, ptr, "image"), ptr + "/image")).string();
+  check_read_inside(json_path.parent_path(), json_path, ptr + "/image", p.path);
   const std::string mapping = r.string(r.required(v, ptr, "mapping"), ptr + "/mapping");
   if (mapping == "equirect") p.mapping = ProbeMapping::equirect;
   else if (mapping == "mirrorball") p.mapping = ProbeMapping::mirrorball;
   else r.fail(ptr + "/mapping", "expected \"equirect\" or \"mirrorball\", found \"" + mapping + "\"");
-  p.position = r.vec3(r.required(v, ptr, "position"), ptr + "/position");
   p.forward = r.direction(r.required(v, ptr, "forward"), ptr + "/forward");
   p.up = r.direction(r.required(v, ptr, "up"), ptr + "/up");
   if (p.forward.cross(p.up).norm() < 1e-4f) r.fail(ptr + "/up", "must not be parallel to forward");
-  r.warn_unknown_keys(v, ptr, {"image", "mapping", "position", "forward", "up"});
   p.image = read_image(p.path);
-  if (is_black(p.image)) spdlog::warn("{}: the probe image is black everywhere: it measured no light", p.path);
+  if (is_black(p.image)) spdlog::warn("{}: the {} image is black everywhere: it measured no light", p.path, what);
   const int w = p.image.width, h = p.image.height;
   if (p.mapping == ProbeMapping::equirect && w != 2 * h)
-    throw InputError(p.path, "", fmt::format("an equirect probe must be twice as wide as high, found {}x{}", w, h));
+    throw InputError(p.path, "", fmt::format("an equirect {} must be twice as wide as high, found {}x{}", what, w, h));
   if (p.mapping == ProbeMapping::mirrorball && w != h)
-    throw InputError(p.path, "", fmt::format("a mirror-ball probe must be square, found {}x{}", w, h));
+    throw InputError(p.path, "", fmt::format("a mirror-ball {} must be square, found {}x{}", what, w, h));
   return p;
 }
 
+Probe parse_probe(const JsonReader& r, const json& v, const std::string& ptr, const fs::path& scene_path) {
+  r.expect_object(v, ptr);
+  r.warn_unknown_keys(v, ptr, {"image", "mapping", "position", "forward", "up"});
+  const Vec3 position = r.vec3(r.required(v, ptr, "position"), ptr + "/position");
+  Probe p = parse_mapped_image(r, v, ptr, scene_path, "probe");
+  p.position = position;
+  return p;
+}
+
+// The rig's `environment`: {"color": [r, g, b]} or a mapped image.
+RigEnvironment parse_rig_environment(const JsonReader& r, const json& v, const fs::path& rig_path) {
+  const std::string ptr = "/environment";
+  r.expect_object(v, ptr);
+  const json* color = r.optional(v, "color");
+  const bool image = v.contains("image");
+  if (color && image) r.fail(ptr, "give either \"color\" or \"image\", not both");
+  RigEnvironment environment;
+  if (color) {
+    r.warn_unknown_keys(v, ptr, {"color"});
+    environment.color = r.color(*color, ptr + "/color");
+  } else if (image) {
+    r.warn_unknown_keys(v, ptr, {"image", "mapping", "forward", "up"});
+    environment.image = std::make_shared<const Probe>(parse_mapped_image(r, v, ptr, rig_path, "environment"));
+  } else {
+    r.fail(ptr, "expected \"color\": [r, g, b], or an \"image\" with \"mapping\", \"forward\" and \"up\"");
+  }
+  return environment;
+}
+
 json v3(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+// Path p as written in a JSON file in `folder`.
+std::string relative_to(const fs::path& folder, const fs::path& p) {
+  const fs::path base = fs::absolute(folder).lexically_normal();
+  return fs::absolute(p).lexically_normal().lexically_relative(base).generic_string();
+}
+
+// The keys parse_mapped_image reads, the image's path relative to `folder`.
+json mapped_image_to_json(const Probe& p, const fs::path& folder) {
+  return {{"image", relative_to(folder, p.path)},
+          {"mapping", p.mapping == ProbeMapping::equirect ? "equirect" : "mirrorball"},
+          {"forward", v3(p.forward)},
+          {"up", v3(p.up)}};
+}
 
 json light_to_json(const Light& l) {
   json j;
@@ -314,18 +358,16 @@ Rig load_rig(const fs::path& path) {
   const JsonReader r(path.string());
   const json root = JsonReader::parse_file(path);
   expect_format(r, root, "relight-rig/1");
-  r.warn_unknown_keys(root, "", {"format", "environment_scale", "lights"});
+  r.warn_unknown_keys(root, "", {"format", "environment", "environment_scale", "lights"});
   Rig rig;
   if (auto* s = r.optional(root, "environment_scale")) rig.environment_scale = r.number(*s, "/environment_scale", 0.0f, 1.0e6f);
   rig.lights = parse_lights(r, root);
+  if (auto* environment = r.optional(root, "environment")) rig.environment = parse_rig_environment(r, *environment, path);
   return rig;
 }
 
 std::string scene_to_json(const Scene& scene, const fs::path& folder) {
-  const fs::path base = fs::absolute(folder).lexically_normal();
-  auto relative = [&](const fs::path& p) {
-    return fs::absolute(p).lexically_normal().lexically_relative(base).generic_string();
-  };
+  const auto relative = [&](const fs::path& p) { return relative_to(folder, p); };
   json j;
   j["format"] = "relight-scene/1";
   j["photo"] = relative(scene.photo_path);
@@ -348,25 +390,29 @@ std::string scene_to_json(const Scene& scene, const fs::path& folder) {
   }
   if (!scene.probes.empty()) {
     j["probes"] = json::array();
-    for (const auto& p : scene.probes)
-      j["probes"].push_back({{"image", relative(p.path)},
-                             {"mapping", p.mapping == ProbeMapping::equirect ? "equirect" : "mirrorball"},
-                             {"position", v3(p.position)},
-                             {"forward", v3(p.forward)},
-                             {"up", v3(p.up)}});
+    for (const auto& p : scene.probes) {
+      json probe = mapped_image_to_json(p, folder);
+      probe["position"] = v3(p.position);
+      j["probes"].push_back(std::move(probe));
+    }
   }
   return json_text(j);
 }
 
-std::string rig_to_json(const Rig& rig) {
+std::string rig_to_json(const Rig& rig, const fs::path& folder) {
   json j;
   j["format"] = "relight-rig/1";
+  if (rig.environment)
+    j["environment"] = rig.environment->image ? mapped_image_to_json(*rig.environment->image, folder)
+                                              : json{{"color", v3(rig.environment->color)}};
   j["environment_scale"] = rig.environment_scale;
   j["lights"] = json::array();
   for (const auto& l : rig.lights) j["lights"].push_back(light_to_json(l));
   return json_text(j);
 }
 
-void save_rig(const fs::path& path, const Rig& rig) { write_text_atomically(path, rig_to_json(rig)); }
+void save_rig(const fs::path& path, const Rig& rig) {
+  write_text_atomically(path, rig_to_json(rig, path.parent_path()));
+}
 
 }  // namespace relight

@@ -25,8 +25,9 @@ std::string scene_to_json(const Scene& scene, const std::filesystem::path& folde
 // The `camera` block of scene.json (principal_point only where off centre).
 nlohmann::json camera_to_json(const CameraSpec& camera);
 
-// The rig as rig.json text, and written atomically.
-std::string rig_to_json(const Rig& rig);
+// The rig as rig.json text, an environment image's path relative to `folder`
+// (the folder the rig.json will be in), and written atomically.
+std::string rig_to_json(const Rig& rig, const std::filesystem::path& folder = ".");
 void save_rig(const std::filesystem::path& path, const Rig& rig);
 
 }  // namespace relight

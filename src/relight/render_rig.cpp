@@ -30,10 +30,19 @@ NewIllumination::NewIllumination(const AnalysedScene& analysed)
       bounce_albedo_(analysed.scene().camera, analysed.gbuffer(), analysed.analysis().albedo.albedo,
                      analysed.analysis().albedo.mean, analysed.analysis().albedo.unseen_triangles) {}
 
+Environment rig_environment(const RigEnvironment& environment) {
+  return environment.image ? Environment::from_probes({*environment.image}) : Environment::constant(environment.color);
+}
+
+void show_environment(RelitLayers& layers, const std::vector<float>& coverage, const Image& background) {
+  for (size_t i = 0; i < layers.background.size(); ++i)
+    layers.background.pixels[i] = (1.0f - coverage[i]) * background.pixels[i];
+}
+
 Lighting NewIllumination::rig_lighting(const Rig& rig) const {
   Lighting lighting;
   lighting.lights = rig.lights;
-  lighting.environment = analysed_.environment();
+  lighting.environment = rig.environment ? rig_environment(*rig.environment) : analysed_.environment();
   lighting.environment.set_scale(rig.environment_scale);
   return lighting;
 }
@@ -56,7 +65,12 @@ Image render_rig(const AnalysedScene& analysed, const Rig& rig, const RenderOpti
   const NewIllumination renderer(analysed);
   const IlluminationImages light = renderer.render(analysed.gbuffer(), analysed.scene().camera,
                                                    renderer.rig_lighting(rig), options, progress, "new illumination");
-  return compose_relit(photo_layers(analysed.scene(), analysed.analysis()), light.surface, rig.environment_scale);
+  RelitLayers layers = photo_layers(analysed.scene(), analysed.analysis());
+  if (!rig.environment) return compose_relit(layers, light.surface, rig.environment_scale);
+  // The camera sees the new environment past the geometry: light.background
+  // is its radiance (x environment_scale) over each pixel's background samples.
+  show_environment(layers, analysed.analysis().coverage, light.background);
+  return compose_relit(layers, light.surface, 1.0f);
 }
 
 Rig rig_from_scene(const Scene& scene) {

@@ -26,6 +26,14 @@ struct RelitLayers {
 };
 RelitLayers photo_layers(const Scene& scene, const Analysis& analysis);
 
+// A rig's new environment, to light with (scale 1).
+Environment rig_environment(const RigEnvironment& environment);
+
+// Makes the layers show `background` (the radiance behind each pixel's
+// background samples, IlluminationImages::background) where geometry does not
+// cover a pixel: (1 - c) x background, in place of the photo's.
+void show_environment(RelitLayers& layers, const std::vector<float>& coverage, const Image& background);
+
 // The re-lit pixel: c·a·illumination + environment_scale·background.
 Image compose_relit(const RelitLayers& layers, const Image& illumination, float environment_scale);
 
@@ -38,7 +46,8 @@ class NewIllumination {
 
   // The environment at scale 1 (the probes or background, per the strategy).
   const Environment& environment() const { return analysed_.environment(); }
-  // The rig's lights and the environment x environment_scale.
+  // The rig's lights and its environment (the new one, or the scene's) x
+  // environment_scale.
   Lighting rig_lighting(const Rig& rig) const;
 
   // The illumination of the pixels of `gbuffer` (the photo's, or a view's
@@ -54,7 +63,8 @@ class NewIllumination {
 };
 
 // The re-lit photo. Pixels that see no geometry show the photo's background
-// times the rig's environment_scale.
+// times the rig's environment_scale, or the rig's new environment as the
+// camera sees it.
 Image render_rig(const AnalysedScene& analysed, const Rig& rig, const RenderOptions& options, Progress& progress);
 
 // A rig holding the scene's own lights and its environment unchanged.

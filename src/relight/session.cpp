@@ -29,6 +29,14 @@ const char* to_string(FrameQuality quality) {
 
 namespace {
 
+// The interactive engine caches the scene's environment's light: a rig's own
+// `environment` is rendered by render_rig (relight render) only.
+void warn_about_a_new_environment(const Rig& rig) {
+  if (rig.environment)
+    spdlog::warn("the interactive engine shows the scene's environment, not the rig's new `environment` "
+                 "(relight render renders it)");
+}
+
 // How far a light's cached direct light has got, for the geometry it was rendered for.
 enum class Stage { none, interactive, antialiased, soft };
 
@@ -117,6 +125,7 @@ RelightSession::RelightSession(const AnalysedScene& analysed, const Rig& rig, co
   if (!fast_)
     fast_ = std::make_unique<CpuDirectLight>(view_->surfaces(), analysed_.rays(), analysed_.analysis().options.seed);
 
+  warn_about_a_new_environment(rig);
   environment_scale_ = rig.environment_scale;
   for (const Light& light : rig.lights) {
     lights_.push_back(new_light_locked(light));
@@ -213,6 +222,7 @@ uint64_t RelightSession::remove_light(size_t index) {
 }
 
 uint64_t RelightSession::set_rig(const Rig& rig) {
+  warn_about_a_new_environment(rig);
   std::lock_guard lock(mutex_);
   std::vector<std::shared_ptr<LightCache>> old = std::move(lights_);
   lights_.clear();

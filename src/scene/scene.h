@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -41,9 +42,19 @@ struct Scene {
   std::optional<AlbedoReference> reference;  // scene.json's optional `reference`
 };
 
+// A rig's new environment (FORMAT.md, "A new environment in a rig"): a
+// constant radiance, or an image mapped as a probe's (its position unused:
+// the environment is infinitely distant). Shared: rigs are copied on every
+// edit in the studio, the image is not.
+struct RigEnvironment {
+  Vec3 color = Vec3::Zero();
+  std::shared_ptr<const Probe> image;  // null: the constant color
+};
+
 // A lighting design: rig.json.
 struct Rig {
   float environment_scale = 1.0f;
+  std::optional<RigEnvironment> environment;  // none: the scene's own environment
   std::vector<Light> lights;
 };
 
