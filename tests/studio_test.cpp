@@ -750,6 +750,19 @@ class StudioTest : public QObject {
 
   // The first view shows the lights and the camera; Frame Selected puts
   // the selected light in the middle, nearer; Frame All the whole geometry.
+  // Labels of markers close together do not overlap: four at one point
+  // take four sides, and each still touches its marker's neighbourhood.
+  void labels_of_markers_close_together_do_not_overlap() {
+    const std::vector<QPointF> anchors{{100, 100}, {100, 100}, {103, 101}, {100, 99}};
+    const std::vector<QSizeF> sizes(4, QSizeF(60, 16));
+    const std::vector<QRectF> boxes = place_labels(anchors, sizes);
+    QCOMPARE(boxes.size(), size_t(4));
+    for (size_t i = 0; i < boxes.size(); ++i) {
+      QVERIFY(QLineF(boxes[i].center(), anchors[i]).length() < 60.0);
+      for (size_t j = 0; j < i; ++j) QVERIFY(!boxes[i].intersects(boxes[j]));
+    }
+  }
+
   void the_views_frame_what_the_camera_sees_the_selected_light_and_all() {
     QVERIFY(window_->open_rig(evening_));
     GeometryView& view = window_->geometry_view();

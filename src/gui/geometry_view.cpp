@@ -252,7 +252,7 @@ void GeometryView::draw_mesh() {
   }
 }
 
-void GeometryView::draw_camera(QPainter& painter) const {
+void GeometryView::draw_camera(QPainter& painter, std::vector<Label>& labels) const {
   const Camera& camera = document_->scene().camera;
   const float depth = 0.06f * scene_size_;
   const float w = float(camera.width()), h = float(camera.height());
@@ -267,10 +267,10 @@ void GeometryView::draw_camera(QPainter& painter) const {
   painter.setBrush(Qt::NoBrush);
   for (const QPointF& c : corners) painter.drawLine(*apex, c);
   painter.drawPolygon(corners.data(), 4);
-  painter.drawText(*apex + QPointF(6, -6), tr("camera"));
+  labels.push_back({*apex, tr("camera")});
 }
 
-void GeometryView::draw_lights(QPainter& painter) const {
+void GeometryView::draw_lights(QPainter& painter, std::vector<Label>& labels) const {
   for (int i = 0; i < document_->light_count(); ++i) {
     const Light& light = document_->light(i);
     const Vec3 at = marker_position(light);
@@ -289,8 +289,7 @@ void GeometryView::draw_lights(QPainter& painter) const {
     painter.setBrush(colour);
     const double r = i == selected_ ? 7.5 : 6.0;
     painter.drawEllipse(*p, r, r);
-    painter.setPen(QColor(240, 240, 240));
-    painter.drawText(*p + QPointF(10, 4), QString::fromStdString(light.name));
+    labels.push_back({*p, QString::fromStdString(light.name)});
   }
 }
 
@@ -304,12 +303,51 @@ void GeometryView::paintEvent(QPaintEvent*) {
     return;
   }
   painter.setRenderHint(QPainter::Antialiasing);
-  draw_camera(painter);
-  draw_lights(painter);
+  std::vector<Label> labels;
+  draw_camera(painter, labels);
+  draw_lights(painter, labels);
+  draw_labels(painter, labels);
   if (hasFocus()) {
     painter.setPen(QPen(palette().highlight().color(), 2));
     painter.setBrush(Qt::NoBrush);
     painter.drawRect(rect().adjusted(1, 1, -1, -1));
+  }
+}
+
+std::vector<QRectF> place_labels(const std::vector<QPointF>& anchors, const std::vector<QSizeF>& sizes) {
+  std::vector<QRectF> placed;
+  for (size_t i = 0; i < anchors.size(); ++i) {
+    const double w = sizes[i].width(), h = sizes[i].height();
+    const QPointF sides[] = {{10, -h / 2}, {-10 - w, -h / 2}, {-w / 2, -10 - h}, {-w / 2, 10},
+                             {10, -1.5 * h}, {10, 0.5 * h}, {10, -2.5 * h}, {10, 1.5 * h}};
+    QRectF box(anchors[i] + sides[0], sizes[i]);
+    for (const QPointF& side : sides) {
+      const QRectF candidate(anchors[i] + side, sizes[i]);
+      if (std::none_of(placed.begin(), placed.end(), [&](const QRectF& r) { return r.intersects(candidate); })) {
+        box = candidate;
+        break;
+      }
+    }
+    placed.push_back(box);
+  }
+  return placed;
+}
+
+void GeometryView::draw_labels(QPainter& painter, const std::vector<Label>& labels) const {
+  const QFontMetricsF metrics(font());
+  std::vector<QPointF> anchors;
+  std::vector<QSizeF> sizes;
+  for (const Label& label : labels) {
+    anchors.push_back(label.anchor);
+    sizes.emplace_back(metrics.horizontalAdvance(label.text) + 8, metrics.height() + 2);
+  }
+  const std::vector<QRectF> boxes = place_labels(anchors, sizes);
+  for (size_t i = 0; i < labels.size(); ++i) {
+    painter.setPen(Qt::NoPen);
+    painter.setBrush(QColor(20, 20, 24, 170));
+    painter.drawRoundedRect(boxes[i], 3, 3);
+    painter.setPen(QColor(240, 240, 240));
+    painter.drawText(boxes[i], Qt::AlignCenter, labels[i].text);
   }
 }
 

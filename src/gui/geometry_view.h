@@ -13,10 +13,16 @@
 #include <QImage>
 #include <QWidget>
 #include <optional>
+#include <vector>
 
 #include "gui/lighting_document.h"
 
 namespace relight::gui {
+
+// Boxes of the given sizes beside their anchors (markers), each on the first
+// side (right, left, above, below, then further out to the right) where it
+// overlaps no box placed before it.
+std::vector<QRectF> place_labels(const std::vector<QPointF>& anchors, const std::vector<QSizeF>& sizes);
 
 class GeometryView : public QWidget {
   Q_OBJECT
@@ -83,8 +89,15 @@ class GeometryView : public QWidget {
   Eye eye() const;
   Vec3 heading() const;  // horizontal, unit
   void draw_mesh();      // into mesh_image_
-  void draw_camera(QPainter& painter) const;
-  void draw_lights(QPainter& painter) const;
+  // A name drawn beside a marker.
+  struct Label {
+    QPointF anchor;
+    QString text;
+  };
+  void draw_camera(QPainter& painter, std::vector<Label>& labels) const;
+  void draw_lights(QPainter& painter, std::vector<Label>& labels) const;
+  // Each label on a dark box beside its marker (place_labels).
+  void draw_labels(QPainter& painter, const std::vector<Label>& labels) const;
   int light_at(const QPointF& point) const;
   void geometry_changed();
 
