@@ -102,26 +102,12 @@ cv::Mat long_edges(const cv::Mat& edges) {
 
 }  // namespace
 
-IlluminationAlignment::IlluminationAlignment(const Image& photo)
-    : photo_edges_(log_luminance_edges(log_luminance(photo))) {
-  const LogLuminanceEdges& e = photo_edges_;
-  cv::Mat labels;
-  cv::distanceTransform(e.edges == 0, photo_edge_distance_, labels, cv::DIST_L2, cv::DIST_MASK_5,
-                        cv::DIST_LABEL_PIXEL);
-  std::vector<int> pixel_of_label(size_t(photo.width) * photo.height + 2, 0);
-  for (int y = 0; y < photo.height; ++y)
-    for (int x = 0; x < photo.width; ++x)
-      if (e.edges.at<uint8_t>(y, x)) pixel_of_label[size_t(labels.at<int>(y, x))] = y * photo.width + x;
-  photo_nearest_ = cv::Mat(labels.size(), CV_32S);
-  for (int y = 0; y < photo.height; ++y)
-    for (int x = 0; x < photo.width; ++x)
-      photo_nearest_.at<int>(y, x) = pixel_of_label[size_t(labels.at<int>(y, x))];
-}
+IlluminationAlignment::IlluminationAlignment(const Image& photo) : photo_edges_(edge_field(log_luminance(photo), 1)) {}
 
 IlluminationAlignment::Aligned IlluminationAlignment::align(const Image& surface_illumination) const {
   const int w = surface_illumination.width, h = surface_illumination.height;
   Aligned out{surface_illumination, std::vector<uint8_t>(size_t(w) * h, 0)};
-  if (photo_edge_distance_.cols != w || photo_edge_distance_.rows != h) return out;
+  if (photo_edges_.distance.cols != w || photo_edges_.distance.rows != h || photo_edges_.position.empty()) return out;
   const std::vector<EdgeMatch> matches = edge_matches(surface_illumination);
   const ImageMotion motion = fit_image_motion(matches, w, h);
   out.motion_px = motion.largest(w, h);
@@ -166,15 +152,16 @@ std::vector<IlluminationAlignment::EdgeMatch> IlluminationAlignment::edge_matche
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       if (!edges.at<uint8_t>(y, x)) continue;
-      const float d = photo_edge_distance_.at<float>(y, x);
-      if (d > farthest) continue;
-      const int p = photo_nearest_.at<int>(y, x), px = p % w, py = p / w;
+      if (photo_edges_.distance.at<float>(y, x) > farthest) continue;
+      const size_t k = size_t(photo_edges_.nearest.at<int>(y, x));
       const Vec2 n = e.normal(x, y);
-      if (n.dot(photo_edges_.normal(px, py)) < kSameDirection) continue;
-      const float step_ratio = photo_edges_.magnitude.at<float>(py, px) / e.magnitude.at<float>(y, x);
+      if (n.dot(photo_edges_.normal[k]) < kSameDirection) continue;
+      const float step_ratio = photo_edges_.magnitude[k] / e.magnitude.at<float>(y, x);
       if (step_ratio > kSameStep || step_ratio < 1 / kSameStep) continue;
       // Along the edge's normal only: an edge slides along itself freely.
-      matches.push_back({x, y, n, n.dot(photo_edges_.position(px, py) - e.position(x, y))});
+      // (The field's positions are pixel centres' coordinates, + 0.5.)
+      const Vec2 photo_edge = photo_edges_.position[k] - Vec2(0.5f, 0.5f);
+      matches.push_back({x, y, n, n.dot(photo_edge - e.position(x, y))});
     }
   return matches;
 }

@@ -13,7 +13,6 @@
 // elsewhere".
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <vector>
 
 #include "analysis/photo_edges.h"
@@ -43,9 +42,7 @@ class IlluminationAlignment {
  private:
   std::vector<EdgeMatch> edge_matches(const Image& surface_illumination) const;
 
-  LogLuminanceEdges photo_edges_;
-  cv::Mat photo_edge_distance_;  // CV_32F, pixels to the photo's nearest edge pixel
-  cv::Mat photo_nearest_;        // CV_32S, that edge pixel's index, y * width + x
+  EdgeField photo_edges_;  // full resolution
 };
 
 }  // namespace relight

@@ -83,6 +83,7 @@ EdgeField edge_field(const cv::Mat& log_lum, int scale) {
       index_of_label[size_t(labels.at<int>(y, x))] = int(f.position.size());
       f.position.push_back(float(scale) * e.position(x, y) + Vec2(0.5f, 0.5f));
       f.normal.push_back(e.normal(x, y));
+      f.magnitude.push_back(e.magnitude.at<float>(y, x));
     }
   f.nearest = cv::Mat(labels.size(), CV_32S);
   for (int y = 0; y < labels.rows; ++y)

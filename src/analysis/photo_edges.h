@@ -39,6 +39,7 @@ struct EdgeField {
   cv::Mat distance;                    // CV_32F, to the nearest edge pixel, this level's pixels
   cv::Mat nearest;                     // CV_32S, the nearest edge pixel's index in position/normal
   std::vector<Vec2> position, normal;  // full-resolution image positions; unit
+  std::vector<float> magnitude;        // the log-luminance gradient there, this level's
 
   size_t edge_pixels() const { return position.size(); }
   // Signed, within +-cap; cap where no edge is within cap (or outside the photo).
