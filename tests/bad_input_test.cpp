@@ -258,6 +258,8 @@ const std::vector<Row>& catalogue() {
        "/probes/0/mapping: expected \"equirect\" or \"mirrorball\""},
       {"ProbeForwardAlongUp", [](SceneFolder& f) { f.add_probe("equirect", 8, 4); f.scene["probes"][0]["up"] = {0, 2, 0}; },
        Command::load, "scene.json", "/probes/0/up: must not be parallel to forward"},
+      {"ProbeScaleNegative", [](SceneFolder& f) { f.add_probe("equirect", 8, 4); f.scene["probes"][0]["scale"] = {1, -2, 1}; },
+       Command::load, "scene.json", "/probes/0/scale: expected a positive number or [r, g, b]"},
       {"ProbeEquirectSquare", [](SceneFolder& f) { f.add_probe("equirect", 8, 8); }, Command::load, "probe.exr",
        "an equirect probe must be twice as wide as high, found 8x8"},
       {"ProbeMirrorballNotSquare", [](SceneFolder& f) { f.add_probe("mirrorball", 8, 4); }, Command::load,

@@ -798,6 +798,19 @@ TEST_F(SceneFolder, LoadsTheRightValues) {
   EXPECT_EQ(fs::path(s.probes[0].path), dir / "probe.exr");
 }
 
+// A probe's `scale` (what relight fit finds to bring it to the photo's
+// units) multiplies its image as read, and is written back.
+TEST_F(SceneFolder, AProbesScaleMultipliesItsImageAndIsSaved) {
+  scene["probes"][0]["scale"] = {2.0, 0.5, 4.0};
+  write_text(scene_path(), scene.dump(2));
+  const Scene s = load_scene(scene_path());
+  EXPECT_EQ(s.probes[0].image.at(3, 2), Vec3(1.0f, 0.25f, 2.0f));
+  write_text(dir / "saved.json", scene_to_json(s, dir.path()));
+  const Scene again = load_scene(dir / "saved.json");
+  EXPECT_EQ(again.probes[0].scale, Vec3(2.0f, 0.5f, 4.0f));
+  EXPECT_EQ(again.probes[0].image.at(3, 2), Vec3(1.0f, 0.25f, 2.0f));  // scaled once, not twice
+}
+
 TEST_F(SceneFolder, OptionalKeysDefault) {
   scene.erase("lights");
   scene.erase("background");

@@ -11,6 +11,8 @@
 
 #include "analysis/analyze.h"
 #include "analysis/color_chart.h"
+#include "analysis/fit.h"
+#include "analysis/probe_exposure.h"
 #include "analysis/strategy.h"
 #include "core/error.h"
 #include "io/response_curve.h"
@@ -545,6 +547,53 @@ TEST(FitWithReference, TheReferenceAlbedoComesBack) {
   EXPECT_NEAR(mean.x(), 0.5f, 0.05f);
   EXPECT_NEAR(mean.y(), 0.4f, 0.04f);
   EXPECT_NEAR(mean.z(), 0.3f, 0.03f);
+}
+
+// A probe shot at another exposure than the photo (and through a chrome
+// ball's tint): 0.5 / 0.4 / 0.6 of the photo's units. The surfaces both show
+// give the ratio back; `fit` scales the probe by it, so the sun it measures
+// and the albedo come out as with the probe in the photo's units. The probe
+// as rendered is taken to match.
+TEST(ProbeExposure, AProbeAtAnotherExposureIsBroughtToThePhotos) {
+  const auto folder = test::reference_scenes_folder() / "outdoor";
+  if (!std::filesystem::exists(folder / "scene.json")) GTEST_SKIP() << folder << " absent";
+  const Scene truth = load_scene(folder / "scene.json");
+  const RayScene rays(truth.mesh);
+  AnalysisOptions options;
+  options.paths_per_pixel = 4;
+  options.strategy = default_strategy(truth);
+  const GBuffer gbuffer = scene_gbuffer(truth, rays, options);
+  const auto matched = photo_exposure_against_probe(truth.probes[0], truth, rays, gbuffer);
+  ASSERT_TRUE(matched);
+  EXPECT_LT((matched->photo_over_probe - Vec3::Ones()).cwiseAbs().maxCoeff(), 0.01f);
+
+  const Vec3 probe_exposure(0.5f, 0.4f, 0.6f);
+  Scene given = truth;
+  for (Vec3& p : given.probes[0].image.pixels) p = p.cwiseProduct(probe_exposure);
+  FitOptions fit_options;
+  fit_options.paths_per_pixel = 8;
+  fit_options.rounds = 1;
+  const FitResult fit = fit_lighting(given, rays, gbuffer, fit_options, Progress::silent());
+  const Vec3 scale = fit.scene.probes[0].scale, sun = fit.scene.lights[0].emission();
+  std::printf("[ figures  ] probe at 0.5 0.4 0.6 of the photo's exposure: scaled by %.3f %.3f %.3f, sun %.3f %.3f %.3f "
+              "(true %.3f %.3f %.3f)\n",
+              scale.x(), scale.y(), scale.z(), sun.x(), sun.y(), sun.z(), truth.lights[0].emission().x(),
+              truth.lights[0].emission().y(), truth.lights[0].emission().z());
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(scale[c] * probe_exposure[c], 1.0f, 0.01f) << c;
+    EXPECT_NEAR(sun[c] / truth.lights[0].emission()[c], 1.0f, 0.03f) << c;
+  }
+  int w, h;
+  const std::vector<float> mask = read_scalar_image(folder / "mask.exr", w, h);
+  const Image albedo_truth = read_image(folder / "albedo_gt.exr");
+  const auto albedo_psnr = [&](const Scene& scene) {
+    const Analysis a = analyze(scene, rays, gbuffer, options, Progress::silent());
+    return psnr(clip01(a.albedo.albedo_coverage), clip01(albedo_truth), &mask);
+  };
+  const double with_truth = albedo_psnr(truth), with_fit = albedo_psnr(fit.scene);
+  std::printf("[ figures  ] outdoor albedo: probe in the photo's units %.2f dB, brought there by fit %.2f dB\n",
+              with_truth, with_fit);
+  EXPECT_GT(with_fit, with_truth - 0.5);
 }
 
 // The chart's patches lie in its cells in reading order, each the middle

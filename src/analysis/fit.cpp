@@ -8,6 +8,7 @@
 
 #include "analysis/color_chart.h"
 #include "analysis/probe_cleanup.h"
+#include "analysis/probe_exposure.h"
 #include "analysis/probe_lights.h"
 #include "analysis/surface_albedo.h"
 #include "analysis/view_checks.h"
@@ -120,6 +121,16 @@ void solve_channel(const Image& photo, std::vector<Basis>& bases, const std::vec
   for (Eigen::Index j = 0; j < n; ++j) bases[unknown[j]].emission[c] = float(std::max(0.0, x[j]));
 }
 
+// A probe within this of the photo's exposure is kept as it is: closer is
+// the estimate's own error (a mirror ball's rim), a camera's exposure steps
+// are a third of a stop (26 %).
+constexpr float kExposureTolerance = 0.05f;
+
+void scale_probe(Probe& probe, const Vec3& factor) {
+  probe.scale = probe.scale.cwiseProduct(factor);
+  for (Vec3& pixel : probe.image.pixels) pixel = pixel.cwiseProduct(factor);
+}
+
 // Whether the whole of the light (its disc, rectangle or sun disc: 3 x 3
 // points over it) is in plain view from the probe's position: a probe the
 // geometry hides the light from shows a wall or a reflection where the light
@@ -170,7 +181,8 @@ class LightingFit {
         bounce_albedo_(gbuffer.width(), gbuffer.height(), Vec3::Ones()) {
     result.scene = scene;
     result.background_before = scene.background;
-    for (const Probe& p : scene.probes) {
+    for (Probe& p : result.scene.probes) match_probe_to_photo(p);
+    for (const Probe& p : result.scene.probes) {
       std::optional<Probe> distant = remove_local_geometry_from_probe(p, rays);
       if (distant) distant_.push_back(*distant);
       // One that sees only the geometry still shows the lights.
@@ -279,6 +291,7 @@ class LightingFit {
     const Vec3 ratio = recovered_x_known.cwiseQuotient(known_squared);
     for (Basis& b : bases_) b.emission = b.emission.cwiseProduct(ratio);
     for (Vec3& a : bounce_albedo_.pixels) a = a.cwiseQuotient(ratio);
+    for (Probe& p : result.scene.probes) scale_probe(p, ratio);
     unseen_ = unseen_.cwiseQuotient(ratio);
     result.reference_scale = ratio;
   }
@@ -302,6 +315,28 @@ class LightingFit {
       bases_[background_].emission = mean;
       result.background_source = "probe mean (the shadows disagree)";
     }
+  }
+
+  // The probe brought to the photo's units (probe_exposure.h), so that the
+  // lights measured from it and the environment it gives are in them too.
+  void match_probe_to_photo(Probe& probe) const {
+    const auto exposure = photo_exposure_against_probe(probe, scene_, rays_, gbuffer_);
+    if (!exposure) {
+      spdlog::info("{}: the probe and the photo show too few surface points in common to match their exposures; "
+                   "the probe is taken to be in the photo's units",
+                   probe.path);
+      return;
+    }
+    const Vec3& k = exposure->photo_over_probe;
+    if (k.array().log().abs().maxCoeff() < std::log(1.0f + kExposureTolerance)) {
+      spdlog::info("{}: the probe's exposure matches the photo's within {:.0f} % ({} surface points both show)",
+                   probe.path, 100 * kExposureTolerance, exposure->points);
+      return;
+    }
+    spdlog::info("{}: the photo shows the surfaces {:.3f} {:.3f} {:.3f} times as bright as the probe does ({} points); "
+                 "the probe is scaled to the photo's units",
+                 probe.path, k.x(), k.y(), k.z(), exposure->points);
+    scale_probe(probe, k);
   }
 
   // Writes the fitted emissions and background into the result.

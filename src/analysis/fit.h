@@ -1,6 +1,9 @@
 // Automatic light fitting: the thesis set the lights' intensities and the
 // background "by trial and error"; relight fits them.
 //
+// 0. Each probe is brought to the photo's units: the surfaces both show give
+//    the ratio of their exposures (probe_exposure.h); within 5 % it is kept.
+//    The ratio is written as the probe's `scale`.
 // 1. A light that a probe sees gets the emission implied by the irradiance it
 //    delivers at the probe (probe_lights.h): absolute, colour included. A
 //    probe sees it only if the geometry hides no part of it from the

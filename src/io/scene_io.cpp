@@ -181,10 +181,18 @@ Probe parse_mapped_image(const JsonReader& r, const json& v, const std::string& 
 
 Probe parse_probe(const JsonReader& r, const json& v, const std::string& ptr, const fs::path& scene_path) {
   r.expect_object(v, ptr);
-  r.warn_unknown_keys(v, ptr, {"image", "mapping", "position", "forward", "up"});
+  r.warn_unknown_keys(v, ptr, {"image", "mapping", "position", "forward", "up", "scale"});
   const Vec3 position = r.vec3(r.required(v, ptr, "position"), ptr + "/position");
+  Vec3 scale = Vec3::Ones();
+  if (const json* s = r.optional(v, "scale")) {
+    const std::string scale_ptr = ptr + "/scale";
+    scale = s->is_number() ? Vec3::Constant(r.number(*s, scale_ptr, 0.0f, 1e9f)) : r.vec3(*s, scale_ptr);
+    if (!(scale.minCoeff() > 0.0f) || !is_finite(scale)) r.fail(scale_ptr, "expected a positive number or [r, g, b]");
+  }
   Probe p = parse_mapped_image(r, v, ptr, scene_path, "probe");
   p.position = position;
+  p.scale = scale;
+  for (Vec3& pixel : p.image.pixels) pixel = pixel.cwiseProduct(scale);
   return p;
 }
 
@@ -393,6 +401,7 @@ std::string scene_to_json(const Scene& scene, const fs::path& folder) {
     for (const auto& p : scene.probes) {
       json probe = mapped_image_to_json(p, folder);
       probe["position"] = v3(p.position);
+      if (p.scale != Vec3::Ones()) probe["scale"] = v3(p.scale);
       j["probes"].push_back(std::move(probe));
     }
   }

@@ -19,6 +19,9 @@ struct Probe {
   Vec3 position = Vec3::Zero();
   Vec3 forward = Vec3(0, 1, 0);
   Vec3 up = Vec3(0, 0, 1);
+  // scene.json's optional `scale`: the image as read times this is `image`,
+  // in the photo's units (relight fit finds it, probe_exposure.h).
+  Vec3 scale = Vec3::Ones();
 };
 
 // The probe's orthonormal frame: right = forward x up (up re-orthogonalised).
