@@ -258,6 +258,13 @@ const std::vector<Row>& catalogue() {
        "/probes/0/mapping: expected \"equirect\" or \"mirrorball\""},
       {"ProbeForwardAlongUp", [](SceneFolder& f) { f.add_probe("equirect", 8, 4); f.scene["probes"][0]["up"] = {0, 2, 0}; },
        Command::load, "scene.json", "/probes/0/up: must not be parallel to forward"},
+      {"ReferenceObjectUnknown", [](SceneFolder& f) { f.scene["reference"] = {{"object", "poster"}, {"albedo", 0.18}}; },
+       Command::load, "scene.json", "has no object named \"poster\""},
+      {"ReferenceObjectAndPolygon",
+       [](SceneFolder& f) {
+         f.scene["reference"] = {{"object", "card"}, {"polygon", {{0, 0}, {4, 0}, {4, 4}}}, {"albedo", 0.18}};
+       },
+       Command::load, "scene.json", "/reference: give either \"polygon\" or \"object\", not both"},
       {"ProbeScaleNegative", [](SceneFolder& f) { f.add_probe("equirect", 8, 4); f.scene["probes"][0]["scale"] = {1, -2, 1}; },
        Command::load, "scene.json", "/probes/0/scale: expected a positive number or [r, g, b]"},
       {"ProbeEquirectSquare", [](SceneFolder& f) { f.add_probe("equirect", 8, 8); }, Command::load, "probe.exr",

@@ -682,6 +682,47 @@ TEST(FitWithReference, AColorCheckerFixesExposureAndWhiteBalance) {
   EXPECT_LT(error / n, 0.02);
 }
 
+// A grey card given as an object of the geometry (its name in the OBJ)
+// rather than a polygon in the photo: the pixels that see only it fix the
+// exposure and white balance. Here every surface has the card's albedo.
+TEST(FitWithReference, AnObjectOfTheGeometryAsTheCard) {
+  SceneFolder f("fit_reference_object");
+  write_text(f / "geometry.obj", std::string("o floor_and_box\n") + test::kGeometry +
+                                     "o grey_card\nv -1.6 -1.6 0.002\nv -0.8 -1.6 0.002\nv -0.8 -0.8 0.002\n"
+                                     "v -1.6 -0.8 0.002\nf 13 14 15\nf 13 15 16\n");
+  f.scene["camera"] = {{"position", {0, -5, 2}}, {"look_at", {0, -1, 0}}, {"up", {0, 0, 1}}, {"vfov_deg", 40}};
+  f.replace_photo(Image(120, 80, Vec3(0.3f, 0.3f, 0.3f)));
+  f.write_json();
+  const auto grey = run_cli({"analyze", (f / "scene.json").string(), "-o", (f / "grey").string(), "--spp", "16"});
+  ASSERT_EQ(grey.status, 0) << grey.err;
+  const Image light = read_image(f / "grey" / "illumination.exr");
+  const Vec3 albedo(0.5f, 0.4f, 0.3f), exposure(0.5f, 0.4f, 0.3f);
+  Image photo(120, 80);
+  for (size_t p = 0; p < photo.size(); ++p)
+    photo.pixels[p] = albedo.cwiseProduct(light.pixels[p]).cwiseProduct(exposure);
+  f.replace_photo(photo);
+  f.scene["reference"] = {{"object", "grey_card"}, {"albedo", {0.5, 0.4, 0.3}}};
+  f.write_json();
+  const auto r = run_cli({"fit", (f / "scene.json").string(), "-o", (f / "fitted.json").string(), "--spp", "16"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("no lit pixel"), std::string::npos) << r.err;
+  EXPECT_EQ(json::parse(test::read_text(f / "fitted.json"))["reference"]["object"], "grey_card");
+  const auto a = run_cli({"analyze", (f / "fitted.json").string(), "-o", (f / "analysis").string(), "--spp", "16"});
+  ASSERT_EQ(a.status, 0) << a.err;
+  const Image recovered = read_image(f / "analysis" / "albedo_surface.exr");
+  int w, h;
+  const std::vector<float> mask = read_scalar_image(f / "analysis" / "mask.exr", w, h);
+  Vec3 sum = Vec3::Zero();
+  int n = 0;
+  for (size_t p = 0; p < recovered.size(); ++p)
+    if (mask[p] >= 0.999f) sum += recovered.pixels[p], ++n;
+  ASSERT_GT(n, 100);
+  const Vec3 mean = sum / float(n);
+  std::printf("[ figures  ] albedo after fit with the card as an object: %.3f %.3f %.3f (true 0.5 0.4 0.3)\n",
+              mean.x(), mean.y(), mean.z());
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c] / albedo[c], 1.0f, 0.05f) << c;
+}
+
 TEST(ProbeFromPhotoCommand, WritesTheCroppedBall) {
   SceneFolder f("probe_from_photo");
   const Circle truth{141.3, 117.6, 63.2};

@@ -2,7 +2,9 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace relight {
 
@@ -58,6 +60,49 @@ bool inside_polygon(const std::vector<Vec2>& polygon, const Vec2& p) {
 std::vector<ReferencePatch> reference_patches(const AlbedoReference& reference) {
   if (!reference.colorchecker.empty()) return colorchecker_patches(reference.colorchecker);
   return {{reference.polygon, reference.albedo}};
+}
+
+namespace {
+
+// The pixels of which every sample sees a triangle of the object.
+ReferencePixels object_pixels(const AlbedoReference& reference, const GBuffer& gbuffer, const TriangleMesh& mesh) {
+  ReferencePixels out;
+  out.patches = 1;
+  const auto found = std::find(mesh.objects.begin(), mesh.objects.end(), reference.object);
+  if (found == mesh.objects.end() || !mesh.has_objects()) return out;
+  const uint32_t object = uint32_t(found - mesh.objects.begin());
+  for (int y = 0; y < gbuffer.height(); ++y)
+    for (int x = 0; x < gbuffer.width(); ++x) {
+      if (gbuffer.coverage(x, y) < 1.0f) continue;
+      bool all_on_it = true;
+      for (int k = 0; k < gbuffer.samples_per_pixel() && all_on_it; ++k)
+        all_on_it = mesh.triangle_objects[gbuffer.sample(x, y, k).surface.prim] == object;
+      if (all_on_it) out.pixels.push_back({size_t(y) * gbuffer.width() + x, reference.albedo, 0});
+    }
+  return out;
+}
+
+}  // namespace
+
+ReferencePixels reference_pixels(const AlbedoReference& reference, const GBuffer& gbuffer, const TriangleMesh& mesh) {
+  if (!reference.object.empty()) return object_pixels(reference, gbuffer, mesh);
+  ReferencePixels out;
+  const std::vector<ReferencePatch> patches = reference_patches(reference);
+  out.patches = patches.size();
+  for (size_t i = 0; i < patches.size(); ++i) {
+    const ReferencePatch& patch = patches[i];
+    // Only the pixels of the patch's bounding box can lie inside it.
+    Eigen::AlignedBox2f box;
+    for (const Vec2& v : patch.polygon) box.extend(v);
+    const int x0 = std::max(0, int(std::floor(box.min().x()))), y0 = std::max(0, int(std::floor(box.min().y())));
+    const int x1 = std::min(gbuffer.width(), int(std::ceil(box.max().x())) + 1);
+    const int y1 = std::min(gbuffer.height(), int(std::ceil(box.max().y())) + 1);
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x)
+        if (gbuffer.coverage(x, y) >= 1.0f && inside_polygon(patch.polygon, Vec2(x + 0.5f, y + 0.5f)))
+          out.pixels.push_back({size_t(y) * gbuffer.width() + x, patch.albedo, i});
+  }
+  return out;
 }
 
 }  // namespace relight

@@ -1,10 +1,11 @@
 // Surfaces of known albedo the photo shows (scene.json's `reference`): a
-// grey card's polygon, or the 24 patches of an X-Rite ColorChecker Classic
-// found from the chart's four corners.
+// grey card's polygon or object, or the 24 patches of an X-Rite
+// ColorChecker Classic found from the chart's four corners.
 #pragma once
 
 #include <vector>
 
+#include "render/gbuffer.h"
 #include "scene/scene.h"
 
 namespace relight {
@@ -23,6 +24,20 @@ std::vector<ReferencePatch> colorchecker_patches(const std::vector<Vec2>& corner
 
 // The reference's patches: its polygon, or its chart's.
 std::vector<ReferencePatch> reference_patches(const AlbedoReference& reference);
+
+// The photo pixels that show a reference wholly (every G-buffer sample on
+// modelled geometry; for an object, every sample on it), each with the
+// albedo it should have and the patch it belongs to.
+struct ReferencePixel {
+  size_t pixel;
+  Vec3 albedo;
+  size_t patch;
+};
+struct ReferencePixels {
+  std::vector<ReferencePixel> pixels;
+  size_t patches = 0;  // of the reference, seen or not
+};
+ReferencePixels reference_pixels(const AlbedoReference& reference, const GBuffer& gbuffer, const TriangleMesh& mesh);
 
 // Even-odd rule: whether p lies inside the polygon.
 bool inside_polygon(const std::vector<Vec2>& polygon, const Vec2& p);

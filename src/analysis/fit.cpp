@@ -258,36 +258,27 @@ class LightingFit {
   // is the least-squares one over every pixel of every patch.
   void apply_reference() {
     if (!scene_.reference) return;
+    const ReferencePixels reference = reference_pixels(*scene_.reference, gbuffer_, scene_.mesh);
     Vec3 recovered_x_known = Vec3::Zero(), known_squared = Vec3::Zero();
-    size_t pixels = 0, patches_seen = 0;
-    const std::vector<ReferencePatch> patches = reference_patches(*scene_.reference);
-    for (const ReferencePatch& patch : patches) {
-      // Only the pixels of the patch's bounding box can lie inside it.
-      Eigen::AlignedBox2f box;
-      for (const Vec2& v : patch.polygon) box.extend(v);
-      const int x0 = std::max(0, int(std::floor(box.min().x()))), y0 = std::max(0, int(std::floor(box.min().y())));
-      const int x1 = std::min(gbuffer_.width(), int(std::ceil(box.max().x())) + 1);
-      const int y1 = std::min(gbuffer_.height(), int(std::ceil(box.max().y())) + 1);
-      size_t n = 0;
-      for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x)
-          if (gbuffer_.coverage(x, y) >= 1.0f && inside_polygon(patch.polygon, Vec2(x + 0.5f, y + 0.5f))) {
-            recovered_x_known += bounce_albedo_.at(x, y).cwiseProduct(patch.albedo);
-            known_squared += patch.albedo.cwiseProduct(patch.albedo);
-            ++n;
-          }
-      pixels += n;
-      patches_seen += n > 0;
+    std::vector<uint8_t> patch_seen(reference.patches, 0);
+    for (const ReferencePixel& p : reference.pixels) {
+      recovered_x_known += bounce_albedo_.pixels[p.pixel].cwiseProduct(p.albedo);
+      known_squared += p.albedo.cwiseProduct(p.albedo);
+      patch_seen[p.patch] = 1;
     }
-    const std::string what = patches.size() > 1 ? "the chart's patches cover" : "the polygon covers";
+    const size_t pixels = reference.pixels.size();
+    const size_t patches_seen = size_t(std::count(patch_seen.begin(), patch_seen.end(), 1));
+    const std::string what = reference.patches > 1             ? "the chart's patches cover"
+                             : scene_.reference->object.empty() ? "the polygon covers"
+                                                                : "object \"" + scene_.reference->object + "\" covers";
     if (pixels == 0 || recovered_x_known.minCoeff() <= 0.0f) {
       spdlog::warn("{}: /reference: {} no lit pixel of the geometry in view; the overall scale is kept",
                    scene_.path.string(), what);
       return;
     }
-    if (patches.size() > 1)
+    if (reference.patches > 1)
       spdlog::info("{}: /reference: {} of the chart's {} patches on the geometry in view, {} pixels",
-                   scene_.path.string(), patches_seen, patches.size(), pixels);
+                   scene_.path.string(), patches_seen, reference.patches, pixels);
     const Vec3 ratio = recovered_x_known.cwiseQuotient(known_squared);
     for (Basis& b : bases_) b.emission = b.emission.cwiseProduct(ratio);
     for (Vec3& a : bounce_albedo_.pixels) a = a.cwiseQuotient(ratio);

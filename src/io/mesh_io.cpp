@@ -149,9 +149,11 @@ void drop_degenerate_triangles(const std::string& name, TriangleMesh& mesh) {
       ++next_bad;
       continue;
     }
+    if (mesh.has_objects()) mesh.triangle_objects[kept] = mesh.triangle_objects[t];
     mesh.triangles[kept++] = mesh.triangles[t];
   }
   mesh.triangles.resize(kept);
+  if (!mesh.triangle_objects.empty()) mesh.triangle_objects.resize(kept);
   spdlog::warn("{}: dropped {} degenerate (zero-area) triangles", name, bad.size());
 }
 
@@ -211,7 +213,36 @@ void save_obj(const fs::path& path, const TriangleMesh& mesh) {
 
 namespace {
 
-// The file through Assimp, flattened to one mesh; throws InputError.
+// Each mesh of the file as its nodes place it in the world: the node's
+// name (the object's, in Blender's exports) and transform. A mesh placed by
+// two nodes is there twice.
+struct PlacedMesh {
+  unsigned mesh;
+  std::string object;
+  aiMatrix4x4 transform;
+};
+
+std::vector<PlacedMesh> placed_meshes(const std::string& name, const aiScene& ai) {
+  // An explicit stack, and a bound on the nodes visited: a malformed file's
+  // node graph could be deep enough to overflow the call stack.
+  constexpr size_t kMaxNodes = 1u << 20;
+  std::vector<PlacedMesh> placed;
+  std::vector<std::pair<const aiNode*, aiMatrix4x4>> stack = {{ai.mRootNode, aiMatrix4x4()}};
+  for (size_t visited = 0; !stack.empty(); ++visited) {
+    if (visited > kMaxNodes) throw InputError(name, "", fmt::format("has over {} nodes", kMaxNodes));
+    const auto [node, parent] = stack.back();
+    stack.pop_back();
+    if (!node) continue;
+    const aiMatrix4x4 world = parent * node->mTransformation;
+    for (unsigned k = 0; k < node->mNumMeshes; ++k)
+      if (node->mMeshes[k] < ai.mNumMeshes) placed.push_back({node->mMeshes[k], node->mName.C_Str(), world});
+    for (unsigned c = node->mNumChildren; c-- > 0;) stack.emplace_back(node->mChildren[c], world);
+  }
+  return placed;
+}
+
+// The file through Assimp, flattened to one mesh in the world frame, each
+// triangle keeping the name of its object; throws InputError.
 TriangleMesh read_with_assimp(const fs::path& path) {
   const std::string name = path.string();
   Assimp::Importer importer;
@@ -222,27 +253,27 @@ TriangleMesh read_with_assimp(const fs::path& path) {
   if (ai) ai = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure);
   if (ai) {
     make_faces_consistent(*ai);
-    // Keep our own handling of degenerates (we report them); bake node
-    // transforms so the mesh is in the world frame.
-    ai = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                                      aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+    // Keep our own handling of degenerates (we report them).
+    ai = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
   }
   if (!ai) throw InputError(name, "", std::string("not a readable mesh (") + importer.GetErrorString() + ")");
 
+  const std::vector<PlacedMesh> placed = placed_meshes(name, *ai);
   TriangleMesh mesh;
   bool all_have_normals = true;
-  for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
-    const aiMesh* am = ai->mMeshes[m];
-    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-    if (!am->HasNormals()) all_have_normals = false;
+  for (const PlacedMesh& p : placed) {
+    const aiMesh* am = ai->mMeshes[p.mesh];
+    if ((am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) && !am->HasNormals()) all_have_normals = false;
   }
-  for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
-    const aiMesh* am = ai->mMeshes[m];
+  for (const PlacedMesh& p : placed) {
+    const aiMesh* am = ai->mMeshes[p.mesh];
     if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    const unsigned m = p.mesh;
+    const aiMatrix3x3 normal_transform = aiMatrix3x3(p.transform).Inverse().Transpose();
     const uint32_t base = uint32_t(mesh.positions.size());
     for (unsigned v = 0; v < am->mNumVertices; ++v) {
-      const aiVector3D& p = am->mVertices[v];
-      const Vec3 pos(p.x, p.y, p.z);
+      const aiVector3D q = p.transform * am->mVertices[v];
+      const Vec3 pos(q.x, q.y, q.z);
       if (!is_finite(pos))
         throw InputError(name, fmt::format("mesh {} vertex {}", m, v), "has a NaN or infinite coordinate");
       if (pos.cwiseAbs().maxCoeff() > kMaxCoordinate)
@@ -250,11 +281,14 @@ TriangleMesh read_with_assimp(const fs::path& path) {
                          fmt::format("has a coordinate beyond {:g} m; expected metres", kMaxCoordinate));
       mesh.positions.push_back(pos);
       if (all_have_normals) {
-        const aiVector3D& n = am->mNormals[v];
+        const aiVector3D n = normal_transform * am->mNormals[v];
         Vec3 nn(n.x, n.y, n.z);
         mesh.normals.push_back(is_finite(nn) && nn.squaredNorm() > 0 ? nn.normalized() : Vec3::Zero());
       }
     }
+    const auto object = std::find(mesh.objects.begin(), mesh.objects.end(), p.object);
+    const uint32_t object_index = uint32_t(object - mesh.objects.begin());
+    if (object == mesh.objects.end()) mesh.objects.push_back(p.object);
     for (unsigned f = 0; f < am->mNumFaces; ++f) {
       const aiFace& face = am->mFaces[f];
       if (face.mNumIndices != 3) continue;
@@ -263,6 +297,7 @@ TriangleMesh read_with_assimp(const fs::path& path) {
           throw InputError(name, fmt::format("mesh {} face {}", m, f),
                            fmt::format("refers to vertex {} of {}", face.mIndices[k], am->mNumVertices));
       mesh.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+      mesh.triangle_objects.push_back(object_index);
     }
   }
   return mesh;
@@ -298,6 +333,10 @@ std::string encode_reading(const fs::path& path) {
     append_array(out, mesh.positions);
     append_array(out, mesh.normals);
     append_array(out, mesh.triangles);
+    append_array(out, mesh.triangle_objects);
+    std::string names;
+    for (const std::string& object : mesh.objects) names += object + '\0';
+    append_array(out, std::vector<char>(names.begin(), names.end()));
   } catch (const InputError& e) {
     out = "E" + e.where() + '\0' + e.message();
   }
@@ -314,8 +353,15 @@ TriangleMesh decode_reading(const std::string& name, std::string_view in) {
   TriangleMesh mesh;
   if (in.empty() || in[0] != 'M') throw InputError(name, "", "the mesh reader returned nothing");
   in.remove_prefix(1);
-  if (!take_array(in, mesh.positions) || !take_array(in, mesh.normals) || !take_array(in, mesh.triangles))
+  std::vector<char> names;
+  if (!take_array(in, mesh.positions) || !take_array(in, mesh.normals) || !take_array(in, mesh.triangles) ||
+      !take_array(in, mesh.triangle_objects) || !take_array(in, names))
     throw InputError(name, "", "the mesh reader returned a cut-off mesh");
+  for (auto begin = names.begin(); begin != names.end();) {
+    const auto end = std::find(begin, names.end(), '\0');
+    mesh.objects.emplace_back(begin, end);
+    begin = end == names.end() ? end : end + 1;
+  }
   return mesh;
 }
 
@@ -351,6 +397,8 @@ TriangleMesh load_mesh(const fs::path& path, const Progress& progress) {
       if (i >= mesh.positions.size()) throw InputError(name, "", "the mesh reader returned a face past the vertices");
   if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
     throw InputError(name, "", "the mesh reader returned normals that do not match the vertices");
+  for (uint32_t object : mesh.triangle_objects)
+    if (object >= mesh.objects.size()) throw InputError(name, "", "the mesh reader returned an unnamed object");
   drop_degenerate_triangles(name, mesh);
   if (const size_t edges = count_non_manifold_edges(mesh))
     spdlog::warn("{}: {} edge{} shared by three or more triangles (non-manifold); rendered as two-sided surfaces",

@@ -10,7 +10,9 @@
 
 namespace relight {
 
-// Loads every triangle of the file with node transforms applied. Throws
+// Loads every triangle of the file with node transforms applied (a mesh two
+// nodes place is there twice), each keeping its node's name as its object
+// (TriangleMesh::objects). Throws
 // InputError for a missing/unreadable file, no triangles, non-finite or
 // out-of-range (> 1e7 m) vertices, a face index past the vertices, or
 // degenerate (zero-area) triangles — unless repair_meshes() is on, which

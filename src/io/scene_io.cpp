@@ -288,13 +288,32 @@ AlbedoReference parse_reference(const JsonReader& r, const json& v) {
     r.warn_unknown_keys(v, "/reference", {"colorchecker"});
     return ref;
   }
-  ref.polygon = parse_pixel_positions(r, r.required(v, "/reference", "polygon"), "/reference/polygon", 0);
+  const json* object = r.optional(v, "object");
+  if (object && v.contains("polygon")) r.fail("/reference", "give either \"polygon\" or \"object\", not both");
+  if (object) {
+    ref.object = r.string(*object, "/reference/object");
+    if (ref.object.empty()) r.fail("/reference/object", "expected the name of an object of the geometry");
+  } else {
+    ref.polygon = parse_pixel_positions(r, r.required(v, "/reference", "polygon"), "/reference/polygon", 0);
+  }
   const json& albedo = r.required(v, "/reference", "albedo");
   const std::string ptr = "/reference/albedo";
   ref.albedo = albedo.is_number() ? Vec3::Constant(r.number(albedo, ptr, 0.0f, 1.0f)) : r.color(albedo, ptr);
   if (ref.albedo.minCoeff() <= 0.0f || ref.albedo.maxCoeff() > 1.0f) r.fail(ptr, "expected an albedo in (0, 1]");
-  r.warn_unknown_keys(v, "/reference", {"polygon", "albedo"});
+  r.warn_unknown_keys(v, "/reference", {"polygon", "object", "albedo"});
   return ref;
+}
+
+// A reference object must be one the geometry names.
+void check_reference_object(const JsonReader& r, const AlbedoReference& ref, const fs::path& geometry,
+                            const TriangleMesh& mesh) {
+  if (ref.object.empty()) return;
+  if (std::find(mesh.objects.begin(), mesh.objects.end(), ref.object) != mesh.objects.end()) return;
+  std::string names;
+  for (size_t i = 0; i < mesh.objects.size() && i < 12; ++i) names += (i ? ", \"" : "\"") + mesh.objects[i] + "\"";
+  if (mesh.objects.size() > 12) names += fmt::format(" and {} more", mesh.objects.size() - 12);
+  r.fail("/reference/object", fmt::format("{} has no object named \"{}\" (its objects: {})", geometry.string(),
+                                          ref.object, names.empty() ? "none named" : names));
 }
 
 // A photo cropped (say to 16:9) after the camera was matched on the whole
@@ -358,6 +377,7 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   check_photo_aspect(scene.photo_path, scene.photo, camera);
   scene.camera = Camera(camera, scene.photo.width, scene.photo.height);
   scene.mesh = load_mesh(scene.geometry_path, progress);
+  if (scene.reference) check_reference_object(r, *scene.reference, scene.geometry_path, scene.mesh);
   for (const auto& [spec, ptr] : probe_specs) scene.probes.push_back(parse_probe(r, *spec, ptr, path));
   return scene;
 }
@@ -392,9 +412,12 @@ std::string scene_to_json(const Scene& scene, const fs::path& folder) {
       return out;
     };
     const AlbedoReference& ref = *scene.reference;
-    j["reference"] = ref.colorchecker.empty()
-                         ? json{{"polygon", positions(ref.polygon)}, {"albedo", v3(ref.albedo)}}
-                         : json{{"colorchecker", positions(ref.colorchecker)}};
+    if (!ref.colorchecker.empty())
+      j["reference"] = {{"colorchecker", positions(ref.colorchecker)}};
+    else if (!ref.object.empty())
+      j["reference"] = {{"object", ref.object}, {"albedo", v3(ref.albedo)}};
+    else
+      j["reference"] = {{"polygon", positions(ref.polygon)}, {"albedo", v3(ref.albedo)}};
   }
   if (!scene.probes.empty()) {
     j["probes"] = json::array();

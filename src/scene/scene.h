@@ -19,10 +19,12 @@ namespace relight {
 
 // A surface of known albedo the photo shows (a grey card): the polygon
 // (photo pixels, x right and y down from the top-left corner) and its albedo.
+// Or an object of the geometry of that albedo (the pixels that see only it).
 // Or a colour chart of known patches: the four outer corners of an X-Rite
 // ColorChecker Classic (analysis/color_chart.h), polygon and albedo unused.
 struct AlbedoReference {
   std::vector<Vec2> polygon;
+  std::string object;  // a name in TriangleMesh::objects, or empty (the polygon)
   Vec3 albedo = Vec3::Constant(0.18f);
   std::vector<Vec2> colorchecker;  // empty, or the chart's 4 corners
 };

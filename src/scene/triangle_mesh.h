@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/vec.h"
@@ -14,8 +15,14 @@ struct TriangleMesh {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  // empty, or one per position
   std::vector<std::array<uint32_t, 3>> triangles;
+  // The objects of the file (its nodes' names: Blender's object names), and
+  // for each triangle the index of its object in `objects`; has_objects()
+  // is false where a mesh was made rather than read (refined, subdivided).
+  std::vector<std::string> objects;
+  std::vector<uint32_t> triangle_objects;
 
   bool has_normals() const { return !normals.empty(); }
+  bool has_objects() const { return !triangles.empty() && triangle_objects.size() == triangles.size(); }
   Eigen::AlignedBox3f bounds() const {
     Eigen::AlignedBox3f box;
     for (const auto& p : positions) box.extend(p);
