@@ -27,6 +27,8 @@ class RelightView {
   const GBuffer& gbuffer() const { return *gbuffer_; }
   const PixelSurfaces& surfaces() const { return surfaces_; }
   const RelitLayers& layers() const { return layers_; }
+  // Each pixel's coverage by geometry: the analysis's at the photo's size.
+  const std::vector<float>& coverage() const { return *coverage_; }
 
  private:
   Camera camera_;
@@ -34,6 +36,13 @@ class RelightView {
   const GBuffer* gbuffer_;
   PixelSurfaces surfaces_;
   RelitLayers layers_;
+  const std::vector<float>* coverage_;
 };
+
+// Illumination rendered on a coarse view (the environment's preview), spread
+// over a view of width x height of the same camera: bilinear, weighted by the
+// coarse pixels' coverage so that the background (no illumination) does not
+// darken the geometry's edges.
+Image upsample_illumination(const Image& coarse, const std::vector<float>& coarse_coverage, int width, int height);
 
 }  // namespace relight
