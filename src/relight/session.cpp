@@ -48,6 +48,28 @@ bool same_picture(const Light& a, const Light& b) {
 
 bool has_extent(const Light& light) { return LightSampler(light).needs_random(); }
 
+bool same_image(const Probe& a, const Probe& b) {
+  return a.mapping == b.mapping && a.image.width == b.image.width && a.image.height == b.image.height &&
+         std::equal(a.image.pixels.begin(), a.image.pixels.end(), b.image.pixels.begin());
+}
+
+// What the camera sees of `environment` past the geometry, for a preview:
+// (1 - c) x the radiance through the pixel's centre (not the mean over its
+// background samples).
+Image seen_through_pixel_centres(const RelightView& view, const Environment& environment) {
+  const std::vector<float>& coverage = view.coverage();
+  const ProbeEnvironment* probe = environment.probe_for(view.camera().position());
+  Image out(view.width(), view.height());
+  tbb::parallel_for(0, view.height(), [&](int y) {
+    for (int x = 0; x < view.width(); ++x) {
+      const float c = coverage[size_t(y) * view.width() + x];
+      if (c < 1.0f)
+        out.at(x, y) = (1.0f - c) * environment.radiance(probe, view.camera().ray_direction(x + 0.5f, y + 0.5f));
+    }
+  });
+  return out;
+}
+
 // Whether two rigs' environments light alike. An image is the same only as
 // the same shared probe: turning it makes a new one.
 bool same_environment(const std::optional<RigEnvironment>& a, const std::optional<RigEnvironment>& b) {
@@ -385,12 +407,13 @@ std::unique_ptr<RelightSession::Job> RelightSession::next_job_locked(std::chrono
 void RelightSession::render_environment(Job& job, bool preview) {
   const RelightView& view = *view_;
   Lighting lighting;
-  lighting.environment = illumination_.environment(job.environment);
+  lighting.environment = environment_to_light(job.environment);
   if (preview) {
     if (!preview_view_) {
       const int d = std::max(1, options_.environment_preview_divisor);
-      preview_view_ =
-          std::make_unique<RelightView>(analysed_, std::max(1, view.width() / d), std::max(1, view.height() / d));
+      preview_view_ = std::make_unique<RelightView>(analysed_, std::max(1, view.width() / d),
+                                                    std::max(1, view.height() / d),
+                                                    options_.environment_preview_samples);
     }
     const RenderOptions quick{1, std::min(1, options_.final_render.max_bounces)};
     const IlluminationImages coarse = illumination_.render(preview_view_->gbuffer(), preview_view_->camera(),
@@ -403,9 +426,24 @@ void RelightSession::render_environment(Job& job, bool preview) {
             .surface;
   }
   if (job.environment)
-    job.background =
-        seen_environment(view.coverage(), illumination_.render_background(view.gbuffer(), view.camera(), lighting));
+    job.background = preview ? seen_through_pixel_centres(view, lighting.environment)
+                             : seen_environment(view.coverage(), illumination_.render_background(
+                                                                     view.gbuffer(), view.camera(), lighting));
   job.done = true;
+}
+
+// The environment a job lights with. A new sky that is the last one turned
+// (the studio turns it a step at a time) keeps its sampling table: building
+// it again costs as much as the preview's paths.
+Environment RelightSession::environment_to_light(const std::optional<RigEnvironment>& environment) {
+  if (!environment || !environment->image) return illumination_.environment(environment);
+  const std::shared_ptr<const Probe>& image = environment->image;
+  if (image != sky_) {
+    sky_environment_ = sky_ && same_image(*sky_, *image) ? sky_environment_.turned(*image)
+                                                         : rig_environment(*environment);
+    sky_ = image;
+  }
+  return sky_environment_;
 }
 
 void RelightSession::run_job(Job& job) {
@@ -533,7 +571,7 @@ RelightSession::Composition RelightSession::composition_locked() {
   // An environment still to be shown is shown as it was at the edit that set it.
   const bool environment_pending = environment_->edit != environment_edit_;
   if (environment_pending) c.edit = std::min(c.edit, environment_->edit == kNothing ? 0 : environment_->edit);
-  bool all_refined = !environment_pending;
+  bool all_refined = environment_->refined && !environment_pending;
   for (const auto& cache : lights_) {
     // A light still to be shown where it is now is shown where it was at
     // the edit that put it there (none: before the first edit).

@@ -44,14 +44,17 @@ struct SessionOptions {
   int bounce_paths = 16;        // per pixel, each light's interreflection and the environment before the final render
   RenderOptions final_render;   // the last refinement: `relight render`'s render (its --spp and --bounces)
   std::chrono::milliseconds settle{150};  // refinement starts once no edit came for this long
-  int environment_preview_divisor = 4;    // the environment's preview: on a view this many times smaller each way
+  // The environment's preview: its light on a view this many times smaller
+  // each way, one path per sub-pixel sample, this many samples per pixel.
+  int environment_preview_divisor = 4;
+  int environment_preview_samples = 4;
   ShadowMapOptions shadow_maps;           // the OpenGL backend's
 };
 
 // How far a frame has got.
 enum class FrameQuality {
-  interactive,  // some light shown at one sample per pixel (moving, or not refined yet)
-  refining,     // every light refined; interreflection or the final render still to come
+  interactive,  // some light shown at one sample per pixel, or the environment as its preview
+  refining,     // every light and the environment refined; interreflection or the final render still to come
   converged,    // the final render: exactly render_rig's image (at the photo's size)
 };
 const char* to_string(FrameQuality quality);
@@ -128,6 +131,7 @@ class RelightSession {
   uint64_t edited_locked(uint64_t light_id, bool geometry);
   void set_environment_locked(const std::optional<RigEnvironment>& environment);
   void render_environment(Job& job, bool preview);
+  Environment environment_to_light(const std::optional<RigEnvironment>& environment);
 
   const AnalysedScene& analysed_;
   SessionOptions options_;
@@ -153,6 +157,8 @@ class RelightSession {
   uint64_t environment_edit_ = 1;                  // the edit that last changed the environment
   std::unique_ptr<EnvironmentLayer> environment_;
   std::unique_ptr<RelightView> preview_view_;  // the environment preview's coarse view; made on first use
+  std::shared_ptr<const Probe> sky_;           // the new environment's image last prepared to light with,
+  Environment sky_environment_;                // and that environment (the worker's)
   std::shared_ptr<const Image> final_;  // the final render of the current state, if done
   Frame frame_;
   SessionStats stats_;

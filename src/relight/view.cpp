@@ -67,7 +67,7 @@ RelitLayers resampled_layers(const Scene& scene, const GBuffer& photo_gbuffer, c
 
 }  // namespace
 
-RelightView::RelightView(const AnalysedScene& analysed, int width, int height)
+RelightView::RelightView(const AnalysedScene& analysed, int width, int height, int samples_per_pixel)
     : camera_(analysed.scene().camera), gbuffer_(&analysed.gbuffer()) {
   const Scene& scene = analysed.scene();
   const Analysis& analysis = analysed.analysis();
@@ -80,7 +80,8 @@ RelightView::RelightView(const AnalysedScene& analysed, int width, int height)
     coverage_ = &analysis.coverage;
   } else {
     camera_ = Camera(scene.camera.spec(), width, height);
-    owned_gbuffer_ = std::make_unique<GBuffer>(camera_, analysed.rays(), photo_gbuffer.samples_per_pixel(),
+    owned_gbuffer_ = std::make_unique<GBuffer>(camera_, analysed.rays(),
+                                               samples_per_pixel > 0 ? samples_per_pixel : photo_gbuffer.samples_per_pixel(),
                                                analysis.options.seed, scene.path.string());
     gbuffer_ = owned_gbuffer_.get();
     layers_ = resampled_layers(scene, photo_gbuffer, analysis, analysed.environment(), camera_, *gbuffer_);

@@ -17,8 +17,9 @@ class RelightView {
   // analysis's (its G-buffer and layers). Other sizes look each surface
   // point's albedo up in the photo (as bounce light does) and the background
   // in the photo or, outside it, in the environment. Holds a reference to
-  // the analysed scene's G-buffer at the photo's size.
-  explicit RelightView(const AnalysedScene& analysed, int width = 0, int height = 0);
+  // the analysed scene's G-buffer at the photo's size. samples_per_pixel:
+  // of another size's G-buffer (0: the photo's).
+  explicit RelightView(const AnalysedScene& analysed, int width = 0, int height = 0, int samples_per_pixel = 0);
 
   int width() const { return camera_.width(); }
   int height() const { return camera_.height(); }
