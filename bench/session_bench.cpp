@@ -260,16 +260,12 @@ void BM_TurnTheSky(benchmark::State& state) {
   const Rig rig = load_rig(fs::path(RELIGHT_SOURCE_DIR) / "tests" / "data" / "new_sky" / "outdoor_sunset_90.json");
   RelightSession session(*analysed, rig);
   session.wait_for_edit(1);
-  const Probe& sky = *rig.environment->image;
-  const Vec3 up = sky.up.normalized();
   std::vector<double> ms;
   int step = 0;
   for (auto _ : state) {
     const auto start = Clock::now();
-    auto turned = std::make_shared<Probe>(sky);
-    const float angle = 10.0f * kPi / 180.0f * float(++step);
-    turned->forward = std::cos(angle) * sky.forward + std::sin(angle) * up.cross(sky.forward);
-    const Frame frame = session.wait_for_edit(session.set_environment(RigEnvironment{Vec3::Zero(), turned}));
+    const Frame frame =
+        session.wait_for_edit(session.set_environment(turned_environment(*rig.environment, 10.0f * float(++step))));
     const double secs = std::chrono::duration<double>(Clock::now() - start).count();
     state.SetIterationTime(secs);
     ms.push_back(1e3 * secs);

@@ -1,5 +1,6 @@
-// The main window's left panel: the geometry view, the list of lights (eye
-// checkbox, short description) with New, Change and Delete (and a
+// The main window's left panel: the geometry view, the environment entry
+// (EnvironmentEntry) and the list of lights (eye checkbox, short
+// description) with New, Change and Delete (and a
 // right-click menu of the window's light actions), and the
 // selected light's details. It shows a document and a selection; what the
 // user asks for comes out as signals (and the geometry view's own), for the
@@ -13,6 +14,7 @@ class QPushButton;
 
 namespace relight::gui {
 
+class EnvironmentEntry;
 class GeometryView;
 class LightDetails;
 class LightListModel;
@@ -27,6 +29,7 @@ class LightsPanel : public QWidget {
   GeometryView& geometry_view() const { return *geometry_; }
   LightListModel& model() const { return *model_; }
   LightDetails& details() const { return *details_; }
+  EnvironmentEntry& environment() const { return *environment_; }
 
   void set_document(LightingDocument* document);
   // Shows light `index` as selected (-1: none) in the view, the list and the details.
@@ -48,6 +51,7 @@ class LightsPanel : public QWidget {
   const LightingDocument* document_ = nullptr;
   GeometryView* geometry_;
   LightListModel* model_;
+  EnvironmentEntry* environment_;
   QListView* list_;
   QPushButton *new_button_, *change_button_, *delete_button_;
   LightDetails* details_;

@@ -3,6 +3,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <cmath>
+
 namespace relight {
 
 RelitLayers photo_layers(const Scene& scene, const Analysis& analysis) {
@@ -32,6 +34,17 @@ NewIllumination::NewIllumination(const AnalysedScene& analysed)
 
 Environment rig_environment(const RigEnvironment& environment) {
   return environment.image ? Environment::from_probes({*environment.image}) : Environment::constant(environment.color);
+}
+
+RigEnvironment turned_environment(const RigEnvironment& environment, float degrees) {
+  if (!environment.image) return environment;
+  auto turned = std::make_shared<Probe>(*environment.image);
+  const float t = degrees * kPi / 180.0f;
+  const Vec3 up = turned->up.normalized(), forward = turned->forward;
+  // Rodrigues' rotation of forward about up.
+  turned->forward =
+      std::cos(t) * forward + std::sin(t) * up.cross(forward) + (1.0f - std::cos(t)) * up.dot(forward) * up;
+  return RigEnvironment{environment.color, std::move(turned)};
 }
 
 Image seen_environment(const std::vector<float>& coverage, const Image& background) {

@@ -30,6 +30,12 @@ RelitLayers photo_layers(const Scene& scene, const Analysis& analysis);
 // A rig's new environment, to light with (scale 1).
 Environment rig_environment(const RigEnvironment& environment);
 
+// `environment` turned by `degrees` about its up, counter-clockwise seen
+// from above (up towards the viewer): its forward turned so, in a new
+// probe (the image copied; the session keeps its sampling table). A
+// constant colour is itself.
+RigEnvironment turned_environment(const RigEnvironment& environment, float degrees);
+
 // What a pixel shows of `background` (the radiance behind its background
 // samples, IlluminationImages::background) where geometry does not cover it:
 // (1 - c) x background, the layer that replaces the photo's.
