@@ -346,6 +346,15 @@ TEST(Session, ANewSkyIsPreviewedAtOnceWithTheLightsKept) {
   RelightSession converging(r, rig, converging_options);
   converging.set_environment(sky());
   EXPECT_EQ(max_difference(*converging.wait_until_converged().image, offline), 0.0f);
+  // Its strength costs no preview and no light's render: the layer is scaled.
+  const SessionStats converged = converging.stats();
+  converging.set_environment_scale(0.5f);
+  Rig weaker = evening_under(sky());
+  weaker.environment_scale = 0.5f;
+  EXPECT_EQ(max_difference(*converging.wait_until_converged().image, offline_render(weaker, converging_options)),
+            0.0f);
+  EXPECT_EQ(converging.stats().environment_previews, converged.environment_previews);
+  EXPECT_EQ(converging.stats().interactive_renders, converged.interactive_renders);
 }
 
 // Turning the sky 90 degrees in the session shows what a rig with its
