@@ -94,6 +94,7 @@ void LightsPanel::set_list_menu(const QList<QAction*>& actions) {
 
 void LightsPanel::enable_buttons(bool open, bool selected) {
   new_button_->setEnabled(open);
+  environment_->setEnabled(open);
   change_button_->setEnabled(selected);
   delete_button_->setEnabled(selected);
 }

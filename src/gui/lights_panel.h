@@ -36,7 +36,8 @@ class LightsPanel : public QWidget {
   void show_selection(int index);
   // Refreshes the details of light `index` (it changed).
   void show_details(int index);
-  // open: a document is open and no long task runs; selected: a light is selected too.
+  // open: a document is open and no long task runs (the environment entry
+  // is editable then); selected: a light is selected too.
   void enable_buttons(bool open, bool selected);
   // What a right click on a light in the list offers (it selects the light first).
   void set_list_menu(const QList<QAction*>& actions);

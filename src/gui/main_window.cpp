@@ -134,11 +134,13 @@ void MainWindow::connect_panels() {
   connect(environment, &EnvironmentEntry::turnEdited, this, &MainWindow::turn_sky);
   // A drag turns the sky live and is one undo step when let go.
   connect(environment, &EnvironmentEntry::turnDragged, this, [this](float turn_deg) {
+    if (!document_) return;
     SkyEdit sky = document_->sky();
     sky.turn_deg = turn_deg;
     document_->set_sky(sky);
   });
   connect(environment, &EnvironmentEntry::turnDropped, this, [this](float before_deg, float after_deg) {
+    if (!document_) return;
     SkyEdit before = document_->sky(), after = before;
     before.turn_deg = before_deg;
     after.turn_deg = after_deg;
