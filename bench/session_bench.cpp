@@ -5,8 +5,10 @@
 // process's CPU time (all threads) per frame: on a busy machine, half of it
 // is about what a frame takes on two idle cores.
 // On the reference scene `bookcase` where ../shared/scenes holds it
-// (RELIGHT_SCENES overrides), else on the example room. Results and the
-// machine they ran on: docs/benchmarks.md, "Interactive relighting".
+// (RELIGHT_SCENES overrides), else on the example room. And a new sky
+// turning on the outdoor scene: from the turn to the frame that shows it.
+// Results and the machine they ran on: docs/benchmarks.md, "Interactive
+// relighting".
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -27,16 +29,30 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The scene, with a quick analysis: the engine's speed does not depend on
-// how good the albedo is.
+fs::path reference_scene(const std::string& name) {
+  if (const char* env = std::getenv("RELIGHT_SCENES")) return fs::path(env) / name;
+  return fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes" / name;
+}
+
+// A quick analysis: the engine's speed does not depend on how good the albedo is.
+std::unique_ptr<AnalysedScene> quick_analysis(Scene scene) {
+  std::fprintf(stderr, "session_bench: scene %s (%zu triangles)\n", scene.path.string().c_str(),
+               scene.mesh.triangles.size());
+  AnalysisOptions options;
+  options.strategy = Strategy::lights;
+  options.paths_per_pixel = 4;
+  options.interreflection = false;
+  return AnalysedScene::analyse(std::move(scene), options, Progress::silent());
+}
+
+// The scene, with a quick analysis.
 struct Fixture {
   std::unique_ptr<AnalysedScene> analysed;
   Rig rig;
 
   Fixture() {
     Scene scene;
-    fs::path folder = fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes" / "bookcase";
-    if (const char* env = std::getenv("RELIGHT_SCENES")) folder = fs::path(env) / "bookcase";
+    const fs::path folder = reference_scene("bookcase");
     if (fs::exists(folder / "scene.json")) {
       scene = load_scene(folder / "scene.json");
     } else {
@@ -44,13 +60,7 @@ struct Fixture {
       scene.path = "room";
       scene.photo = Image(640, 480, Vec3::Constant(0.2f));
     }
-    std::fprintf(stderr, "session_bench: scene %s (%zu triangles)\n", scene.path.string().c_str(),
-                 scene.mesh.triangles.size());
-    AnalysisOptions options;
-    options.strategy = Strategy::lights;
-    options.paths_per_pixel = 4;
-    options.interreflection = false;
-    analysed = AnalysedScene::analyse(std::move(scene), options, Progress::silent());
+    analysed = quick_analysis(std::move(scene));
     rig = four_lights();
   }
   const Scene& scene() const { return analysed->scene(); }
@@ -232,6 +242,48 @@ BENCHMARK(BM_ConvergeAfterRelease)
     ->Iterations(1)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
+
+// A new sky on the outdoor scene (640x480, CPU backend): the rig of
+// tests/data/new_sky/outdoor_sunset_90.json (the sunset HDRI alone), turned
+// 10 degrees further about up per iteration. Each iteration times the turn
+// (a new probe: the image copied, its sampling table built) to the frame
+// that shows it, at preview quality, as in a drag (no refinement between);
+// and, once let go, the time to the converged frame (converged_s). Skipped
+// without the outdoor scene.
+void BM_TurnTheSky(benchmark::State& state) {
+  const fs::path folder = reference_scene("outdoor");
+  if (!fs::exists(folder / "scene.json")) {
+    state.SkipWithError(("no scene at " + folder.string()).c_str());
+    return;
+  }
+  open_session().reset();  // no other session refining beside this one
+  const auto analysed = quick_analysis(load_scene(folder / "scene.json"));
+  const Rig rig = load_rig(fs::path(RELIGHT_SOURCE_DIR) / "tests" / "data" / "new_sky" / "outdoor_sunset_90.json");
+  RelightSession session(*analysed, rig);
+  session.wait_for_edit(1);
+  std::vector<double> ms;
+  int step = 0;
+  for (auto _ : state) {
+    const auto start = Clock::now();
+    const Frame frame =
+        session.wait_for_edit(session.set_environment(turned_environment(*rig.environment, 10.0f * float(++step))));
+    const double secs = std::chrono::duration<double>(Clock::now() - start).count();
+    state.SetIterationTime(secs);
+    ms.push_back(1e3 * secs);
+    if (frame.quality != FrameQuality::interactive) state.SkipWithError("the turn's frame was not the preview");
+  }
+  state.counters["median_ms"] = percentile(ms, 0.5);
+  state.counters["p95_ms"] = percentile(ms, 0.95);
+  state.counters["previews"] = double(session.stats().environment_previews);
+  // Let go: the refinement and the final render (relight render's, 64
+  // paths per pixel) after the last turn.
+  const auto released = Clock::now();
+  session.wait_until_converged();
+  state.counters["converged_s"] = std::chrono::duration<double>(Clock::now() - released).count();
+  state.SetLabel("cpu " + std::to_string(session.view().width()) + "x" + std::to_string(session.view().height()) +
+                 " turning the sunset sky of outdoor");
+}
+BENCHMARK(BM_TurnTheSky)->Iterations(30)->MeasureProcessCPUTime()->UseManualTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -2,17 +2,22 @@
 // session frame into the picture on screen (exposure, sRGB, 8 bits), and
 // redrawing the geometry view while it orbits (the mesh, back to front with
 // QPainter). On the reference scene `bookcase` where ../shared/scenes holds
-// it (RELIGHT_SCENES overrides), else on the example room. Offscreen: no
-// display needed. Results: docs/benchmarks.md, "relight studio".
+// it (RELIGHT_SCENES overrides), else on the example room. And a new sky
+// turned through the document, as the sky strip's drag does, on the outdoor
+// scene. Offscreen: no display needed. Results: docs/benchmarks.md,
+// "relight studio".
 #include <benchmark/benchmark.h>
 
 #include <QApplication>
 #include <QImage>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
 #include "analysis/strategy.h"
+#include "core/statistics.h"
 #include "gui/geometry_view.h"
+#include "gui/sky_strip.h"
 #include "gui/tone_map.h"
 #include "io/scene_io.h"
 #include "room_scene.h"
@@ -23,9 +28,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::shared_ptr<StudioScene> bench_scene() {
-  fs::path folder = fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes" / "bookcase";
-  if (const char* env = std::getenv("RELIGHT_SCENES")) folder = fs::path(env) / "bookcase";
+fs::path reference_scene(const std::string& name) {
+  if (const char* env = std::getenv("RELIGHT_SCENES")) return fs::path(env) / name;
+  return fs::path(RELIGHT_SOURCE_DIR) / ".." / "shared" / "scenes" / name;
+}
+
+std::shared_ptr<StudioScene> bench_scene(const std::string& name = "bookcase") {
+  const fs::path folder = reference_scene(name);
   Scene scene;
   if (fs::exists(folder / "scene.json")) {
     scene = load_scene(folder / "scene.json");
@@ -70,6 +79,37 @@ void BM_GeometryViewOrbit(benchmark::State& state) {
   state.counters["triangles"] = double(scene->analysed->scene().mesh.triangles.size());
 }
 BENCHMARK(BM_GeometryViewOrbit)->Args({420, 320})->Args({800, 600})->Unit(benchmark::kMillisecond);
+
+// The outdoor scene (640x480, CPU backend) under tests/data/new_sky's sunset
+// HDRI, turned 10 degrees further per iteration through the document (the
+// strip's drag): from the turn to its frame at preview quality made the
+// picture on screen. The window's 33 ms frame timer comes on top (half of
+// it on average). Skipped without the outdoor scene.
+void BM_TurnTheSkyInTheStudio(benchmark::State& state) {
+  if (!fs::exists(reference_scene("outdoor") / "scene.json")) {
+    state.SkipWithError("no outdoor scene");
+    return;
+  }
+  static const std::shared_ptr<StudioScene> scene = bench_scene("outdoor");
+  const Rig rig = load_rig(fs::path(RELIGHT_SOURCE_DIR) / "tests" / "data" / "new_sky" / "outdoor_sunset_90.json");
+  LightingDocument document(scene, rig, SessionOptions{});
+  document.session().wait_for_edit(1);
+  std::vector<double> ms;
+  SkyEdit sky = document.sky();
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    sky.turn_deg = wrapped_turn(sky.turn_deg + 10.0f);
+    document.set_sky(sky);
+    const Frame frame = document.session().wait_for_edit(document.session().last_edit());
+    benchmark::DoNotOptimize(to_qimage(*frame.image, 0.0f));
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    state.SetIterationTime(secs);
+    ms.push_back(1e3 * secs);
+  }
+  state.counters["median_ms"] = percentile(ms, 0.5);
+  state.counters["p95_ms"] = percentile(ms, 0.95);
+}
+BENCHMARK(BM_TurnTheSkyInTheStudio)->Iterations(30)->MeasureProcessCPUTime()->UseManualTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

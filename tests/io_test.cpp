@@ -685,6 +685,32 @@ TEST_F(RigFile, EnvironmentNeitherColorNorImage) {
   EXPECT_MENTIONS(load_error(), rig_path().string(), "/environment", "color", "image");
 }
 
+// The studio's Image…: an HDR image alone is a new sky, equirect or mirror
+// ball by its shape, in Blender's default frame; another shape, or an image
+// that cannot be read, is an error naming the file.
+TEST_F(RigFile, AnImageAloneIsANewSky) {
+  write_exr(dir / "wide.exr", Image(8, 4, Vec3(1.0f, 2.0f, 3.0f)));
+  write_exr(dir / "ball.exr", Image(6, 6, Vec3::Ones()));
+  write_exr(dir / "odd.exr", Image(6, 4, Vec3::Ones()));
+  const RigEnvironment wide = load_environment_image(dir / "wide.exr");
+  ASSERT_TRUE(wide.image);
+  EXPECT_EQ(wide.image->mapping, ProbeMapping::equirect);
+  EXPECT_EQ(wide.image->forward, Vec3(1, 0, 0));
+  EXPECT_EQ(wide.image->up, Vec3(0, 0, 1));
+  EXPECT_EQ(wide.image->image.at(7, 3), Vec3(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(load_environment_image(dir / "ball.exr").image->mapping, ProbeMapping::mirrorball);
+  const auto error_of = [](const fs::path& path) {
+    try {
+      load_environment_image(path);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_MENTIONS(error_of(dir / "odd.exr"), (dir / "odd.exr").string(), "twice as wide", "6x4");
+  EXPECT_MENTIONS(error_of(dir / "absent.exr"), (dir / "absent.exr").string(), "not found");
+}
+
 TEST_F(RigFile, ZeroPower) {
   rig["lights"][1]["power"] = 0;
   EXPECT_MENTIONS(load_error(), rig_path().string(), "/lights/1/power");

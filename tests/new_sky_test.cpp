@@ -125,6 +125,13 @@ TEST(NewSky, AnImageSkyTurnsWithItsForward) {
   rig.environment = RigEnvironment{Vec3::Zero(), turned};
   EXPECT_LT(mean_sky_brightness(rig, 48, 64), 0.2);
   EXPECT_GT(mean_sky_brightness(rig, 0, 16), 2.0);
+  // The rig convenience says the same: 40 degrees counter-clockwise seen
+  // from above, the image shared, up kept.
+  const RigEnvironment by_turning = turned_environment(RigEnvironment{Vec3::Zero(), sky}, 40.0f);
+  EXPECT_LT((by_turning.image->forward - turned->forward).norm(), 1e-6f);
+  EXPECT_EQ(by_turning.image->up, sky->up);
+  EXPECT_NE(by_turning.image, sky);
+  EXPECT_EQ(turned_environment(RigEnvironment{Vec3(1, 2, 3), nullptr}, 40.0f).color, Vec3(1, 2, 3));
 }
 
 }  // namespace

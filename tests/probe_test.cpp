@@ -317,6 +317,34 @@ TEST(ProbeEnvironment, MirrorballPdfIntegratesToOne) {
   EXPECT_NEAR(integrate_pdf_over_sphere(env, 1000), 1.0, 0.02);
 }
 
+// A turned sky keeps its sampling table: it samples, weighs and shows
+// exactly what the same probe built afresh does, for both mappings.
+TEST(ProbeEnvironment, ATurnedProbeIsTheSameProbeBuiltAfresh) {
+  for (const ProbeMapping mapping : {ProbeMapping::equirect, ProbeMapping::mirrorball}) {
+    const Probe probe = synthetic_probe(mapping, 24, 24, 8, 10, 3, 3);
+    Probe turned = probe;
+    turned.forward = Vec3(-std::sin(1.0f), std::cos(1.0f), 0.0f);
+    const ProbeEnvironment fresh(turned), kept(ProbeEnvironment(probe), turned);
+    Rng rng(7, 0);
+    for (int i = 0; i < 2000; ++i) {
+      const Vec2 u = rng.uniform2();
+      Vec3 d_fresh, d_kept;
+      float pdf_fresh = 0.0f, pdf_kept = 0.0f;
+      ASSERT_EQ(fresh.sample(u, d_fresh, pdf_fresh), kept.sample(u, d_kept, pdf_kept));
+      EXPECT_EQ(d_fresh, d_kept);
+      EXPECT_EQ(pdf_fresh, pdf_kept);
+      const Vec3 d = sample_uniform_sphere(rng.uniform2());
+      EXPECT_EQ(fresh.pdf(d), kept.pdf(d));
+      EXPECT_EQ(fresh.radiance(d), kept.radiance(d));
+    }
+    const Environment environment = Environment::from_probes({probe}).turned(turned);
+    EXPECT_EQ(environment.probe_for(Vec3::Zero())->probe().forward, turned.forward);
+  }
+  Probe smaller = synthetic_probe(ProbeMapping::equirect, 12, 6, 1, 1, 2, 2);
+  EXPECT_THROW(ProbeEnvironment(ProbeEnvironment(synthetic_probe(ProbeMapping::equirect, 24, 12, 1, 1, 2, 2)), smaller),
+               std::invalid_argument);
+}
+
 TEST(ProbeEnvironment, SamplesConcentrateOnTheBrightRegion) {
   // Fraction of samples in the bright pixels = their share of
   // luminance x solid angle.

@@ -1,7 +1,9 @@
 // The interactive relighting session on the example room: it converges to
 // exactly render_rig's image, an edit re-renders only the light it changes
 // (a colour or power change none at all), stale work never reaches the
-// screen, other view sizes and the OpenGL backend give the same picture.
+// screen, other view sizes and the OpenGL backend give the same picture; a
+// new sky is previewed at once with the lights kept, turns as a rig's
+// forward does, and converges to the offline render too.
 #include "relight/session.h"
 
 #include <gtest/gtest.h>
@@ -86,6 +88,41 @@ Light sun_light() {
   sun.direction = Vec3(0.3f, 0.5f, -0.8f).normalized();
   sun.irradiance = 2.0f;
   return sun;
+}
+
+// A new sky for the open-topped room: an equirect image, blue above the
+// horizon, dark ground below and a sun 40 degrees up, 60 degrees right of
+// forward (+y). Turned by `turn_deg` about up (+z): forward turned so.
+RigEnvironment sky(float turn_deg = 0.0f) {
+  static const std::shared_ptr<const Probe> image = [] {
+    auto probe = std::make_shared<Probe>();
+    probe->path = "sky";
+    probe->image = Image(128, 64);
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 128; ++x) {
+        const float elevation = 90.0f - (y + 0.5f) * 180.0f / 64.0f, azimuth = (x + 0.5f) * 360.0f / 128.0f - 180.0f;
+        Vec3 radiance = elevation > 0.0f ? Vec3(0.3f, 0.45f, 0.8f) : Vec3(0.08f, 0.07f, 0.05f);
+        if (std::abs(elevation - 40.0f) < 4.0f && std::abs(azimuth - 60.0f) < 4.0f) radiance = Vec3(90, 80, 60);
+        probe->image.at(x, y) = radiance;
+      }
+    return probe;
+  }();
+  if (turn_deg == 0.0f) return RigEnvironment{Vec3::Zero(), image};
+  auto turned = std::make_shared<Probe>(*image);
+  const float t = turn_deg * kPi / 180.0f;
+  turned->forward = Vec3(-std::sin(t), std::cos(t), 0.0f);
+  return RigEnvironment{Vec3::Zero(), turned};
+}
+
+Rig evening_under(const RigEnvironment& environment) {
+  Rig rig = example::evening_rig();
+  rig.environment = environment;
+  rig.environment_scale = 1.0f;
+  return rig;
+}
+
+double tonemapped_psnr(const Image& a, const Image& b) {
+  return psnr(tonemap_reinhard_srgb(a), tonemap_reinhard_srgb(b));
 }
 
 TEST(Session, ConvergesToExactlyTheOfflineRender) {
@@ -270,6 +307,106 @@ TEST(Session, AViewOfAnotherSizeShowsTheSamePicture) {
                                 big.at(2 * x + 1, 2 * y + 1));
   const double db = psnr(tonemap_reinhard_srgb(small), tonemap_reinhard_srgb(offline_render(rig, options)));
   std::printf("[ figures  ] room view at 2x the photo's size vs the photo-size render: PSNR %.2f dB\n", db);
+  EXPECT_GE(db, 30.0);
+}
+
+// A new sky costs one preview of the environment's layer and no light's
+// render; the preview looks like the offline render, and the view converges
+// to exactly that render.
+TEST(Session, ANewSkyIsPreviewedAtOnceWithTheLightsKept) {
+  const AnalysedScene& r = room();
+  SessionOptions options = quick_options();
+  options.settle = std::chrono::hours(1);  // the preview alone
+  Rig rig = example::evening_rig();
+  rig.environment_scale = 1.0f;
+  RelightSession session(r, rig, options);
+  const Frame old_sky = session.wait_for_edit(1);
+  const SessionStats before = session.stats();
+  const Frame preview = session.wait_for_edit(session.set_environment(sky()));
+  EXPECT_EQ(preview.quality, FrameQuality::interactive);
+  EXPECT_EQ(session.stats().interactive_renders, before.interactive_renders);
+  EXPECT_EQ(session.stats().environment_previews, before.environment_previews + 1);
+  EXPECT_EQ(session.stats().refinements, 0u);
+  ASSERT_TRUE(session.rig().environment);
+  EXPECT_EQ(session.rig().environment->image, sky().image);
+  const Image offline = offline_render(evening_under(sky()), options);
+  keep_image("room_new_sky_preview", *preview.image);
+  keep_image("room_new_sky_offline", offline);
+  const double preview_db = tonemapped_psnr(*preview.image, offline);
+  const double old_db = tonemapped_psnr(*old_sky.image, offline);
+  std::printf("[ figures  ] room under a new sky, preview vs offline render: PSNR %.2f dB (the old sky: %.2f dB)\n",
+              preview_db, old_db);
+  EXPECT_GE(preview_db, 28.0);
+  EXPECT_GE(preview_db, old_db + 5.0);
+  // The same sky again is no edit.
+  EXPECT_EQ(session.set_environment(sky()), session.last_edit());
+  EXPECT_EQ(session.stats().environment_previews, before.environment_previews + 1);
+
+  SessionOptions converging_options = quick_options();
+  RelightSession converging(r, rig, converging_options);
+  converging.set_environment(sky());
+  EXPECT_EQ(max_difference(*converging.wait_until_converged().image, offline), 0.0f);
+  // Its strength costs no preview and no light's render: the layer is scaled.
+  const SessionStats converged = converging.stats();
+  converging.set_environment_scale(0.5f);
+  Rig weaker = evening_under(sky());
+  weaker.environment_scale = 0.5f;
+  EXPECT_EQ(max_difference(*converging.wait_until_converged().image, offline_render(weaker, converging_options)),
+            0.0f);
+  EXPECT_EQ(converging.stats().environment_previews, converged.environment_previews);
+  EXPECT_EQ(converging.stats().interactive_renders, converged.interactive_renders);
+}
+
+// Turning the sky 90 degrees in the session shows what a rig with its
+// forward turned shows: the same preview, bit for bit, and the same
+// converged image, the offline render of that rig.
+TEST(Session, TurningTheSkyEqualsARigWithItsForwardTurned) {
+  const AnalysedScene& r = room();
+  SessionOptions options = quick_options();
+  options.settle = std::chrono::hours(1);
+  const Rig turned = evening_under(sky(90.0f));
+  RelightSession session(r, evening_under(sky()), options);
+  const Frame unturned = session.wait_for_edit(1);
+  const Frame turned_here = session.wait_for_edit(session.set_environment(turned.environment));
+  RelightSession started_turned(r, turned, options);
+  EXPECT_EQ(max_difference(*turned_here.image, *started_turned.wait_for_edit(1).image), 0.0f);
+  const double db = tonemapped_psnr(*turned_here.image, *unturned.image);
+  std::printf("[ figures  ] room: the sky turned 90 degrees vs not turned, PSNR %.2f dB\n", db);
+  EXPECT_LT(db, 35.0);  // the turn shows
+
+  SessionOptions converging_options = quick_options();
+  RelightSession converging(r, evening_under(sky()), converging_options);
+  converging.wait_for_edit(1);
+  converging.set_environment(turned.environment);
+  EXPECT_EQ(max_difference(*converging.wait_until_converged().image, offline_render(turned, converging_options)),
+            0.0f);
+  // Back to the scene's own sky (a rig without `environment`).
+  Rig own = turned;
+  own.environment.reset();
+  converging.set_rig(own);
+  EXPECT_FALSE(converging.rig().environment);
+  EXPECT_EQ(max_difference(*converging.wait_until_converged().image, offline_render(own, converging_options)), 0.0f);
+}
+
+// At twice the photo's size the new sky shows past the geometry and lights
+// it as at the photo's: averaged down 2x2, the converged view matches the
+// offline render.
+TEST(Session, AViewOfAnotherSizeShowsTheNewSkyToo) {
+  const AnalysedScene& r = room();
+  SessionOptions options = quick_options();
+  options.width = 2 * r.scene().photo.width;
+  options.height = 2 * r.scene().photo.height;
+  const Rig rig = evening_under(sky(30.0f));
+  RelightSession session(r, rig, options);
+  const Image& big = *session.wait_until_converged().image;
+  Image small(r.scene().photo.width, r.scene().photo.height);
+  for (int y = 0; y < small.height; ++y)
+    for (int x = 0; x < small.width; ++x)
+      small.at(x, y) = 0.25f * (big.at(2 * x, 2 * y) + big.at(2 * x + 1, 2 * y) + big.at(2 * x, 2 * y + 1) +
+                                big.at(2 * x + 1, 2 * y + 1));
+  const double db = tonemapped_psnr(small, offline_render(rig, options));
+  std::printf("[ figures  ] room under a new sky, view at 2x the photo's size vs the offline render: PSNR %.2f dB\n",
+              db);
   EXPECT_GE(db, 30.0);
 }
 

@@ -1,7 +1,7 @@
 // relight studio (src/gui) on a copy of the example room, offscreen: opening
 // a scene (analysis cached next to it), adding, editing, moving by keys and
-// mouse, switching off, deleting, undo, rig files, export, and that the
-// picture on screen follows the lights.
+// mouse, switching off, deleting, undo, rig files, export, that the picture
+// on screen follows the lights, and the Environment entry's new sky.
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QLabel>
@@ -16,6 +16,7 @@
 #include <QStatusBar>
 #include <QTemporaryDir>
 #include <QTimer>
+#include <QToolButton>
 #include <QtTest/QtTest>
 #include <filesystem>
 #include <fstream>
@@ -24,11 +25,13 @@
 #include <nlohmann/json.hpp>
 
 #include "gui/colour_temperature.h"
+#include "gui/environment_entry.h"
 #include "gui/geometry_view.h"
 #include "gui/light_dialog.h"
 #include "gui/light_list_model.h"
 #include "gui/main_window.h"
 #include "gui/photo_view.h"
+#include "gui/sky_strip.h"
 #include "gui/tone_map.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
@@ -103,7 +106,7 @@ class StudioTest : public QObject {
 
  private:
   QTemporaryDir folder_;
-  QString scene_, evening_;
+  QString scene_, evening_, sky_rig_;
   std::unique_ptr<MainWindow> window_;
 
   // A window on the room; with `rig`, that rig instead of the scene's lamp.
@@ -122,6 +125,7 @@ class StudioTest : public QObject {
     document().session().wait_until_converged();
     window_->refresh_frame();
   }
+  QWidget& lights_environment() { return *window_->findChild<EnvironmentEntry*>(); }
   // Presses the mouse on the geometry view at `at`, moves it by `by` and
   // lets go; `before_release` runs while the button is still down.
   void drag_in_geometry_view(QPoint at, QPoint by, const std::function<void()>& before_release = [] {}) {
@@ -155,6 +159,19 @@ class StudioTest : public QObject {
     fs::copy_file(room / "rigs/evening.json", copy / "evening.json");
     scene_ = QString::fromStdString((copy / "scene.json").string());
     evening_ = QString::fromStdString((copy / "evening.json").string());
+    // The evening rig under a new sky: blue above the horizon, a bright
+    // patch low on the right of its forward, dark ground.
+    Image sky(64, 32);
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 64; ++x)
+        sky.at(x, y) = y < 16 ? (x >= 40 && x < 46 && y >= 10 ? Vec3(40, 36, 30) : Vec3(0.3f, 0.45f, 0.8f))
+                              : Vec3(0.05f, 0.05f, 0.04f);
+    fs::create_directories(copy / "skies");
+    write_exr(copy / "skies" / "sky.exr", sky);
+    Rig under_sky = load_rig(copy / "evening.json");
+    under_sky.environment = load_environment_image(copy / "skies" / "sky.exr");
+    save_rig(copy / "sky.json", under_sky);
+    sky_rig_ = QString::fromStdString((copy / "sky.json").string());
     // The first open analyses the scene and leaves the analysis beside it.
     open();
     QVERIFY(!document().studio_scene().from_cache);
@@ -517,6 +534,76 @@ class StudioTest : public QObject {
     QVERIFY(window_->isWindowModified());
     window_->undo_stack().redo();
     QVERIFY(!window_->isWindowModified());
+  }
+
+  // A drag on the sky strip turns the new sky (the strip's width a full
+  // turn, the sky following the mouse) in one undo step, and the picture
+  // follows; undo is the saved rig again, byte for byte. The turn field's
+  // steps are one step, the eye switches the sky off, Save writes the turn
+  // with the image's path relative to the rig.
+  void dragging_the_sky_strip_turns_it_and_undo_is_the_saved_rig() {
+    QVERIFY(window_->open_rig(sky_rig_));
+    const std::string saved = rig_to_json(document().rig(), folder_.path().toStdString());
+    QVERIFY(saved.find("\"skies/sky.exr\"") != std::string::npos);
+    auto* strip = window_->findChild<SkyStrip*>("environment_strip");
+    QVERIFY(strip && strip->isVisible() && strip->isEnabled());
+    QCOMPARE(window_->findChild<QLabel*>("environment_name")->text(), QStringLiteral("sky.exr"));
+    keep_picture("environment_entry", lights_environment());
+    const Image before = *document().session().wait_for_edit(document().session().last_edit()).image;
+
+    const QPoint at(strip->width() / 2, strip->height() / 2), by(strip->width() / 4, 0);
+    const auto send = [&](QEvent::Type type, QPoint p, Qt::MouseButtons buttons) {
+      QMouseEvent event(type, p, strip->mapToGlobal(p), Qt::LeftButton, buttons, Qt::NoModifier);
+      QApplication::sendEvent(strip, &event);
+    };
+    send(QEvent::MouseButtonPress, at, Qt::LeftButton);
+    send(QEvent::MouseMove, at + by / 2, Qt::LeftButton);
+    send(QEvent::MouseMove, at + by, Qt::LeftButton);
+    send(QEvent::MouseButtonRelease, at + by, Qt::NoButton);
+    const float expected = -360.0f * float(by.x()) / float(strip->width());  // dragged right: clockwise
+    QVERIFY(std::abs(document().sky().turn_deg - expected) < 1e-4f);
+    QCOMPARE(window_->undo_stack().index(), 1);
+    QCOMPARE(window_->undo_stack().text(0), QStringLiteral("Drag the sky"));
+    const float t = expected * kPi / 180.0f;
+    const Vec3 forward = document().rig().environment->image->forward;
+    QVERIFY2((forward - Vec3(std::cos(t), std::sin(t), 0.0f)).norm() < 1e-5f, qPrintable(QString::number(forward.y())));
+    QCOMPARE(document().session().rig().environment->image, document().rig().environment->image);
+    const Image turned = *document().session().wait_for_edit(document().session().last_edit()).image;
+    double change = 0.0;
+    for (size_t i = 0; i < turned.size(); ++i) change += (turned.pixels[i] - before.pixels[i]).cwiseAbs().sum();
+    std::printf("[ figures  ] studio: the sky dragged %.1f degrees changes the picture by %.4f per pixel\n",
+                double(expected), change / double(turned.size()));
+    QVERIFY(change / double(turned.size()) > 1e-3);
+
+    window_->undo_stack().undo();
+    QVERIFY(window_->undo_stack().isClean());
+    EXPECT_EXACT(document().sky().turn_deg, 0.0f);
+    QCOMPARE(rig_to_json(document().rig(), folder_.path().toStdString()), saved);
+    QCOMPARE(strip->turn_deg(), 0.0f);
+
+    auto* turn = window_->findChild<QDoubleSpinBox*>("environment_turn");
+    turn->setValue(40.0);
+    turn->setValue(45.0);
+    QCOMPARE(window_->undo_stack().index(), 1);  // one step
+    EXPECT_EXACT(document().sky().turn_deg, 45.0f);
+    const QString path = folder_.filePath("turned.json");
+    QVERIFY(window_->save_rig(path));
+    const Rig reloaded = load_rig(path.toStdString());
+    QVERIFY(reloaded.environment && reloaded.environment->image);
+    QCOMPARE(reloaded.environment->image->path, (fs::path(folder_.path().toStdString()) / "skies/sky.exr").string());
+    QVERIFY((reloaded.environment->image->forward - Vec3(std::cos(kPi / 4), std::sin(kPi / 4), 0)).norm() < 1e-5f);
+
+    window_->findChild<QToolButton*>("environment_eye")->click();
+    QVERIFY(!document().rig().environment);
+    QVERIFY(!document().session().rig().environment);
+    QVERIFY(window_->findChild<QLabel*>("environment_name")->text().endsWith("(off)"));
+    window_->undo_stack().undo();
+    QVERIFY(document().rig().environment);
+
+    QVERIFY(!window_->open_sky(folder_.filePath("scene.json")));
+    QVERIFY(window_->last_error().contains("scene.json"));
+    QVERIFY(window_->open_sky(folder_.filePath("skies/sky.exr")));
+    EXPECT_EXACT(document().sky().turn_deg, 0.0f);
   }
 
   void a_temperature_gives_a_blackbody_colour() {

@@ -49,4 +49,16 @@ bool EnvironmentScaleCommand::mergeWith(const QUndoCommand* other) {
   return true;
 }
 
+EnvironmentCommand::EnvironmentCommand(LightingDocument& document, const SkyEdit& before, const SkyEdit& after,
+                                       const QString& text, Merge merge)
+    : QUndoCommand(text), document_(document), before_(before), after_(after), merge_(merge) {}
+
+void EnvironmentCommand::redo() { document_.set_sky(after_); }
+void EnvironmentCommand::undo() { document_.set_sky(before_); }
+
+bool EnvironmentCommand::mergeWith(const QUndoCommand* other) {
+  after_ = static_cast<const EnvironmentCommand*>(other)->after_;
+  return true;
+}
+
 }  // namespace relight::gui

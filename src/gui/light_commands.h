@@ -40,7 +40,8 @@ class DeleteLightCommand : public QUndoCommand {
 // undo can come back to what was saved.
 class EditLightCommand : public QUndoCommand {
  public:
-  // The undo command ids: apart from EnvironmentScaleCommand's (2).
+  // The undo command ids: apart from EnvironmentScaleCommand's (2) and
+  // EnvironmentCommand's (5).
   enum class Merge { never = -1, key_move = 1, colour = 3, power = 4 };
   EditLightCommand(LightingDocument& document, int index, const Light& before, const Light& after,
                    const QString& text, Merge merge = Merge::never);
@@ -67,6 +68,24 @@ class EnvironmentScaleCommand : public QUndoCommand {
  private:
   LightingDocument& document_;
   float before_, after_;
+};
+
+// A change to the Environment entry: a new sky, a turn, the eye. A run of
+// turns pushed with Merge::turn (the turn field's steps) is one undo step.
+class EnvironmentCommand : public QUndoCommand {
+ public:
+  enum class Merge { never = -1, turn = 5 };
+  EnvironmentCommand(LightingDocument& document, const SkyEdit& before, const SkyEdit& after, const QString& text,
+                     Merge merge = Merge::never);
+  void redo() override;
+  void undo() override;
+  int id() const override { return int(merge_); }
+  bool mergeWith(const QUndoCommand* other) override;
+
+ private:
+  LightingDocument& document_;
+  SkyEdit before_, after_;
+  Merge merge_;
 };
 
 }  // namespace relight::gui

@@ -15,8 +15,9 @@ namespace {
 
 QString type_name(LightType type) { return type == LightType::directional ? QStringLiteral("sun") : to_string(type); }
 
-// An eye, open with an iris in the light's colour, or closed (switched off).
-QIcon eye_icon(const Light& light) {
+}  // namespace
+
+QIcon eye_icon(bool open, const QColor& iris) {
   constexpr int size = 20;
   QPixmap pixmap(size, size);
   pixmap.fill(Qt::transparent);
@@ -25,12 +26,12 @@ QIcon eye_icon(const Light& light) {
   QPainterPath lid;
   lid.moveTo(2, 10);
   lid.quadTo(10, 1, 18, 10);
-  if (light.enabled) {
+  if (open) {
     lid.quadTo(10, 19, 2, 10);
     p.setPen(QPen(QColor(60, 60, 60), 1.4));
     p.setBrush(Qt::white);
     p.drawPath(lid);
-    p.setBrush(display_colour(light.color));
+    p.setBrush(iris);
     p.drawEllipse(QPointF(10, 10), 4, 4);
     p.setBrush(Qt::black);
     p.drawEllipse(QPointF(10, 10), 1.5, 1.5);
@@ -45,8 +46,6 @@ QIcon eye_icon(const Light& light) {
   }
   return QIcon(pixmap);
 }
-
-}  // namespace
 
 QString light_summary(const Light& light) {
   const QString name = QString::fromStdString(light.name);
@@ -98,7 +97,7 @@ QVariant LightListModel::data(const QModelIndex& index, int role) const {
       if (document_->solo() >= 0 && index.row() != document_->solo()) return QColor(150, 150, 150);
       return {};
     case Qt::DecorationRole:
-      return eye_icon(light);
+      return eye_icon(light.enabled, display_colour(light.color));
     case Qt::CheckStateRole:
       return light.enabled ? Qt::Checked : Qt::Unchecked;
     case Qt::ToolTipRole:

@@ -8,11 +8,15 @@
 #pragma once
 
 #include <QAbstractListModel>
+#include <QIcon>
 #include <QStyledItemDelegate>
 
 #include "gui/lighting_document.h"
 
 namespace relight::gui {
+
+// An eye, open with an iris of colour `iris`, or closed (switched off).
+QIcon eye_icon(bool open, const QColor& iris);
 
 // "lamp — point, 250 W" / "sun — sun, 3 W/m²".
 QString light_summary(const Light& light);

@@ -2,12 +2,25 @@
 
 namespace relight::gui {
 
+std::optional<RigEnvironment> SkyEdit::environment() const {
+  if (!opened || !enabled) return std::nullopt;
+  return turn_deg == 0.0f ? *opened : turned_environment(*opened, turn_deg);
+}
+
+bool SkyEdit::operator==(const SkyEdit& other) const {
+  const bool same_opened = opened && other.opened
+                               ? opened->image == other.opened->image && opened->color == other.opened->color
+                               : !opened && !other.opened;
+  return same_opened && turn_deg == other.turn_deg && enabled == other.enabled;
+}
+
 LightingDocument::LightingDocument(std::shared_ptr<const StudioScene> scene, const Rig& rig,
                                    const SessionOptions& options, QObject* parent)
     : QObject(parent),
       scene_(std::move(scene)),
       rig_(rig),
-      session_(std::make_unique<RelightSession>(*scene_->analysed, rig_, options)) {}
+      session_(std::make_unique<RelightSession>(*scene_->analysed, rig_, options)),
+      sky_{rig.environment} {}
 
 LightingDocument::~LightingDocument() = default;
 
@@ -62,12 +75,21 @@ void LightingDocument::set_environment_scale(float scale) {
   emit environmentScaleChanged(scale);
 }
 
+void LightingDocument::set_sky(const SkyEdit& sky) {
+  if (sky == sky_) return;
+  sky_ = sky;
+  rig_.environment = sky_.environment();
+  session_->set_environment(rig_.environment);
+  emit skyChanged();
+}
+
 void LightingDocument::reset_rig(const Rig& rig) {
   if (solo_ >= 0) {
     solo_ = -1;
     emit soloChanged(-1);
   }
   rig_ = rig;
+  sky_ = SkyEdit{rig.environment};
   session_->set_rig(rig_);
   emit rigReset();
 }

@@ -3,7 +3,8 @@
 // the rig goes through here (the undo commands call it), and each one
 // announces itself so that the list, the geometry view and the photo follow.
 // A light can be soloed: the session then draws it alone, lit, and the
-// others off, while the rig keeps every light's own `enabled`.
+// others off, while the rig keeps every light's own `enabled`. The rig's
+// new environment is edited as a SkyEdit (the Environment entry).
 #pragma once
 
 #include <QObject>
@@ -13,6 +14,21 @@
 #include "relight/session.h"
 
 namespace relight::gui {
+
+// The rig's new environment as the Environment entry edits it: the sky as
+// opened (none: the scene's own environment), turned by turn_deg about its
+// up (counter-clockwise seen from above), shown or switched off (then the
+// scene's own environment lights, and a rig saved so has no `environment`).
+struct SkyEdit {
+  std::optional<RigEnvironment> opened;
+  float turn_deg = 0.0f;
+  bool enabled = true;
+
+  // The rig's `environment` this gives (the opened one itself unturned).
+  std::optional<RigEnvironment> environment() const;
+  // Opened skies compare by their image (shared, never copied) and colour.
+  bool operator==(const SkyEdit& other) const;
+};
 
 class LightingDocument : public QObject {
   Q_OBJECT
@@ -34,6 +50,7 @@ class LightingDocument : public QObject {
   // The rig as the session draws it (what the picture shows).
   Rig shown_rig() const;
   int solo() const { return solo_; }  // the soloed light, or -1
+  const SkyEdit& sky() const { return sky_; }
   // Solos light `index`; -1 lights the rig as it is again.
   void set_solo(int index);
 
@@ -42,6 +59,9 @@ class LightingDocument : public QObject {
   void insert_light(int index, const Light& light);
   void remove_light(int index);
   void set_environment_scale(float scale);
+  // A new sky, a turn, the eye: the session renders the environment again,
+  // not the lights. The sky as it is makes no change.
+  void set_sky(const SkyEdit& sky);
   // Replaces the whole rig (a rig file was opened); the session keeps the
   // images of the lights that did not move.
   void reset_rig(const Rig& rig);
@@ -51,6 +71,7 @@ class LightingDocument : public QObject {
   void lightInserted(int index);
   void lightRemoved(int index);
   void environmentScaleChanged(float scale);
+  void skyChanged();
   void rigReset();
   void soloChanged(int index);
 
@@ -59,6 +80,7 @@ class LightingDocument : public QObject {
   Rig rig_;
   std::unique_ptr<RelightSession> session_;
   int solo_ = -1;
+  SkyEdit sky_;
 };
 
 }  // namespace relight::gui

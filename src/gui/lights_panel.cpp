@@ -7,6 +7,7 @@
 #include <QSplitter>
 #include <QVBoxLayout>
 
+#include "gui/environment_entry.h"
 #include "gui/geometry_view.h"
 #include "gui/light_details.h"
 #include "gui/light_list_model.h"
@@ -18,6 +19,7 @@ LightsPanel::LightsPanel(QWidget* parent)
     : QWidget(parent),
       geometry_(new GeometryView),
       model_(new LightListModel(this)),
+      environment_(new EnvironmentEntry),
       list_(new QListView),
       new_button_(new QPushButton(tr("&New\u2026"))),
       change_button_(new QPushButton(tr("&Change\u2026"))),
@@ -48,6 +50,7 @@ LightsPanel::LightsPanel(QWidget* parent)
 
   auto* lights = new QGroupBox(tr("Lights"));
   auto* lights_layout = new QVBoxLayout(lights);
+  lights_layout->addWidget(environment_);
   lights_layout->addWidget(list_, 1);
   lights_layout->addLayout(buttons);
 
@@ -67,6 +70,7 @@ LightsPanel::LightsPanel(QWidget* parent)
 void LightsPanel::set_document(LightingDocument* document) {
   document_ = document;
   model_->set_document(document);
+  environment_->set_document(document);
   geometry_->set_document(document);
 }
 
@@ -90,6 +94,7 @@ void LightsPanel::set_list_menu(const QList<QAction*>& actions) {
 
 void LightsPanel::enable_buttons(bool open, bool selected) {
   new_button_->setEnabled(open);
+  environment_->setEnabled(open);
   change_button_->setEnabled(selected);
   delete_button_->setEnabled(selected);
 }

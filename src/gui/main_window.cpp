@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "gui/environment_entry.h"
 #include "gui/geometry_view.h"
 #include "gui/light_commands.h"
 #include "gui/light_details.h"
@@ -121,6 +122,34 @@ void MainWindow::connect_panels() {
   connect(lights_, &LightsPanel::newRequested, this, &MainWindow::new_light_dialog);
   connect(lights_, &LightsPanel::changeRequested, this, &MainWindow::change_light_dialog);
   connect(lights_, &LightsPanel::deleteRequested, this, [this] { delete_light(selected_); });
+
+  EnvironmentEntry* environment = &lights_->environment();
+  connect(environment, &EnvironmentEntry::imageRequested, this, [this] {
+    const QString folder = QFileInfo(rig_path_.isEmpty() ? scene_path_ : rig_path_).path();
+    const QString path =
+        QFileDialog::getOpenFileName(this, tr("A new sky"), folder, tr("HDR images (*.exr *.hdr);;All files (*)"));
+    if (!path.isEmpty()) open_sky(path);
+  });
+  connect(environment, &EnvironmentEntry::enabledToggled, this, &MainWindow::set_sky_enabled);
+  connect(environment, &EnvironmentEntry::turnEdited, this, &MainWindow::turn_sky);
+  // A drag turns the sky live and is one undo step when let go.
+  connect(environment, &EnvironmentEntry::turnDragged, this, [this](float turn_deg) {
+    if (!document_) return;
+    SkyEdit sky = document_->sky();
+    sky.turn_deg = turn_deg;
+    document_->set_sky(sky);
+  });
+  connect(environment, &EnvironmentEntry::turnDropped, this, [this](float before_deg, float after_deg) {
+    if (!document_) return;
+    SkyEdit before = document_->sky(), after = before;
+    before.turn_deg = before_deg;
+    after.turn_deg = after_deg;
+    undo_.push(new EnvironmentCommand(*document_, before, after, tr("Drag the sky")));
+  });
+  connect(environment, &EnvironmentEntry::strengthEdited, this, [this](float scale) {
+    if (document_ && scale != document_->rig().environment_scale)
+      undo_.push(new EnvironmentScaleCommand(*document_, document_->rig().environment_scale, scale));
+  });
 
   connect(&photo_panel_->photo_view(), &PhotoView::photoClicked, this, &MainWindow::photo_clicked);
   connect(photo_panel_, &PhotoPanel::ambientEdited, this, [this](float scale) {
@@ -324,6 +353,37 @@ bool MainWindow::open_rig(const QString& path) {
     show_error(QString::fromStdString(e.what()));
     return false;
   }
+}
+
+void MainWindow::edit_sky(const QString& text, EnvironmentCommand::Merge merge,
+                          const std::function<void(SkyEdit&)>& change) {
+  if (!document_) return;
+  SkyEdit after = document_->sky();
+  change(after);
+  if (after == document_->sky()) return;
+  undo_.push(new EnvironmentCommand(*document_, document_->sky(), after, text, merge));
+}
+
+bool MainWindow::open_sky(const QString& image_path) {
+  if (!document_) return false;
+  try {
+    const RigEnvironment sky = load_environment_image(image_path.toStdString());
+    edit_sky(tr("New sky %1").arg(QFileInfo(image_path).fileName()), EnvironmentCommand::Merge::never,
+             [&](SkyEdit& edit) { edit = SkyEdit{sky}; });
+    return true;
+  } catch (const std::exception& e) {
+    show_error(QString::fromStdString(e.what()));
+    return false;
+  }
+}
+
+void MainWindow::turn_sky(float turn_deg) {
+  edit_sky(tr("Turn the sky"), EnvironmentCommand::Merge::turn, [&](SkyEdit& sky) { sky.turn_deg = turn_deg; });
+}
+
+void MainWindow::set_sky_enabled(bool enabled) {
+  edit_sky(enabled ? tr("Show the new sky") : tr("Switch the new sky off"), EnvironmentCommand::Merge::never,
+           [&](SkyEdit& sky) { sky.enabled = enabled; });
 }
 
 bool MainWindow::save_rig(const QString& path) {

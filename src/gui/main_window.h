@@ -71,6 +71,12 @@ class MainWindow : public QMainWindow {
   // Solos light `index`, or, if it is the one soloed, ends the solo.
   void toggle_solo(int index);
   void set_light_enabled(int index, bool enabled);
+  // The Environment entry's edits, each one undo step: a new sky from an
+  // HDR image (false, with the error shown, where it cannot be read), its
+  // turn in degrees (a run of them one step), the eye.
+  bool open_sky(const QString& image_path);
+  void turn_sky(float turn_deg);
+  void set_sky_enabled(bool enabled);
   // The selected light's colour / power (a sun's irradiance); a run of these
   // edits of one light is one undo step.
   void set_selected_colour(const Vec3& colour);
@@ -127,6 +133,7 @@ class MainWindow : public QMainWindow {
   // Pushes `change` of the selected light as one edit (merged as `merge` says).
   void edit_selected_light(const QString& text, EditLightCommand::Merge merge,
                            const std::function<void(Light&)>& change);
+  void edit_sky(const QString& text, EnvironmentCommand::Merge merge, const std::function<void(SkyEdit&)>& change);
 
   StudioOptions options_;
   std::shared_ptr<const StudioScene> scene_;

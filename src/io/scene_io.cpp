@@ -154,6 +154,16 @@ CameraSpec parse_camera(const JsonReader& r, const json& v, GeometryContents& ge
   return c;
 }
 
+// Checks that the image of `p` fits its mapping, and warns if it is black.
+void check_mapped_image(const Probe& p, const char* what) {
+  if (is_black(p.image)) spdlog::warn("{}: the {} image is black everywhere: it measured no light", p.path, what);
+  const int w = p.image.width, h = p.image.height;
+  if (p.mapping == ProbeMapping::equirect && w != 2 * h)
+    throw InputError(p.path, "", fmt::format("an equirect {} must be twice as wide as high, found {}x{}", what, w, h));
+  if (p.mapping == ProbeMapping::mirrorball && w != h)
+    throw InputError(p.path, "", fmt::format("a mirror-ball {} must be square, found {}x{}", what, w, h));
+}
+
 // An image mapped as a probe's: `image` (relative to the JSON file), `mapping`,
 // `forward` and `up` of the object at `ptr`, the image read and checked;
 // `what` ("probe", "environment") names it in messages.
@@ -170,12 +180,7 @@ Probe parse_mapped_image(const JsonReader& r, const json& v, const std::string& 
   p.up = r.direction(r.required(v, ptr, "up"), ptr + "/up");
   if (p.forward.cross(p.up).norm() < 1e-4f) r.fail(ptr + "/up", "must not be parallel to forward");
   p.image = read_image(p.path);
-  if (is_black(p.image)) spdlog::warn("{}: the {} image is black everywhere: it measured no light", p.path, what);
-  const int w = p.image.width, h = p.image.height;
-  if (p.mapping == ProbeMapping::equirect && w != 2 * h)
-    throw InputError(p.path, "", fmt::format("an equirect {} must be twice as wide as high, found {}x{}", what, w, h));
-  if (p.mapping == ProbeMapping::mirrorball && w != h)
-    throw InputError(p.path, "", fmt::format("a mirror-ball {} must be square, found {}x{}", what, w, h));
+  check_mapped_image(p, what);
   return p;
 }
 
@@ -215,6 +220,21 @@ RigEnvironment parse_rig_environment(const JsonReader& r, const json& v, const f
   }
   return environment;
 }
+
+}  // namespace
+
+RigEnvironment load_environment_image(const fs::path& path) {
+  auto p = std::make_shared<Probe>();
+  p->path = path.string();
+  p->forward = Vec3(1, 0, 0);
+  p->up = Vec3(0, 0, 1);
+  p->image = read_image(p->path);
+  if (p->image.width == p->image.height) p->mapping = ProbeMapping::mirrorball;
+  check_mapped_image(*p, "environment");
+  return RigEnvironment{Vec3::Zero(), std::move(p)};
+}
+
+namespace {
 
 json v3(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 

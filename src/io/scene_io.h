@@ -18,6 +18,12 @@ Scene load_scene(const std::filesystem::path& path, const Progress& progress = P
 
 Rig load_rig(const std::filesystem::path& path);
 
+// An HDR image as a rig's new environment (relight studio's Environment
+// entry): equirect where twice as wide as high, a mirror ball where square,
+// in Blender's default frame (forward [1, 0, 0], up [0, 0, 1]). Throws
+// InputError naming the file.
+RigEnvironment load_environment_image(const std::filesystem::path& path);
+
 // scene.json text for a scene; photo, geometry and probe paths are written
 // relative to `folder` (the folder the scene.json will be in).
 std::string scene_to_json(const Scene& scene, const std::filesystem::path& folder);

@@ -3,6 +3,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <cmath>
+
 namespace relight {
 
 RelitLayers photo_layers(const Scene& scene, const Analysis& analysis) {
@@ -34,15 +36,38 @@ Environment rig_environment(const RigEnvironment& environment) {
   return environment.image ? Environment::from_probes({*environment.image}) : Environment::constant(environment.color);
 }
 
-void show_environment(RelitLayers& layers, const std::vector<float>& coverage, const Image& background) {
-  for (size_t i = 0; i < layers.background.size(); ++i)
-    layers.background.pixels[i] = (1.0f - coverage[i]) * background.pixels[i];
+RigEnvironment turned_environment(const RigEnvironment& environment, float degrees) {
+  if (!environment.image) return environment;
+  auto turned = std::make_shared<Probe>(*environment.image);
+  const float t = degrees * kPi / 180.0f;
+  const Vec3 up = turned->up.normalized(), forward = turned->forward;
+  // Rodrigues' rotation of forward about up.
+  turned->forward =
+      std::cos(t) * forward + std::sin(t) * up.cross(forward) + (1.0f - std::cos(t)) * up.dot(forward) * up;
+  return RigEnvironment{environment.color, std::move(turned)};
+}
+
+Image seen_environment(const std::vector<float>& coverage, const Image& background) {
+  Image out(background.width, background.height);
+  for (size_t i = 0; i < out.size(); ++i) out.pixels[i] = (1.0f - coverage[i]) * background.pixels[i];
+  return out;
+}
+
+Image relit_image(RelitLayers layers, const std::vector<float>& coverage, const IlluminationImages& light,
+                  const Rig& rig) {
+  if (!rig.environment) return compose_relit(layers, light.surface, rig.environment_scale);
+  layers.background = seen_environment(coverage, light.background);
+  return compose_relit(layers, light.surface, 1.0f);
+}
+
+Environment NewIllumination::environment(const std::optional<RigEnvironment>& environment) const {
+  return environment ? rig_environment(*environment) : analysed_.environment();
 }
 
 Lighting NewIllumination::rig_lighting(const Rig& rig) const {
   Lighting lighting;
   lighting.lights = rig.lights;
-  lighting.environment = rig.environment ? rig_environment(*rig.environment) : analysed_.environment();
+  lighting.environment = environment(rig.environment);
   lighting.environment.set_scale(rig.environment_scale);
   return lighting;
 }
@@ -61,16 +86,16 @@ IlluminationImages NewIllumination::render(const GBuffer& gbuffer, const Camera&
   return render_illumination(gbuffer, camera, integrator, illumination, progress, label);
 }
 
+Image NewIllumination::render_background(const GBuffer& gbuffer, const Camera& camera,
+                                         const Lighting& lighting) const {
+  return relight::render_background(gbuffer, camera, Integrator(analysed_.rays(), lighting, &bounce_albedo_));
+}
+
 Image render_rig(const AnalysedScene& analysed, const Rig& rig, const RenderOptions& options, Progress& progress) {
   const NewIllumination renderer(analysed);
   const IlluminationImages light = renderer.render(analysed.gbuffer(), analysed.scene().camera,
                                                    renderer.rig_lighting(rig), options, progress, "new illumination");
-  RelitLayers layers = photo_layers(analysed.scene(), analysed.analysis());
-  if (!rig.environment) return compose_relit(layers, light.surface, rig.environment_scale);
-  // The camera sees the new environment past the geometry: light.background
-  // is its radiance (x environment_scale) over each pixel's background samples.
-  show_environment(layers, analysed.analysis().coverage, light.background);
-  return compose_relit(layers, light.surface, 1.0f);
+  return relit_image(photo_layers(analysed.scene(), analysed.analysis()), analysed.analysis().coverage, light, rig);
 }
 
 Rig rig_from_scene(const Scene& scene) {

@@ -8,6 +8,7 @@
 
 #include "analysis/analysed_scene.h"
 #include "analysis/surface_albedo.h"
+#include "render/render_illumination.h"
 
 namespace relight {
 
@@ -29,13 +30,26 @@ RelitLayers photo_layers(const Scene& scene, const Analysis& analysis);
 // A rig's new environment, to light with (scale 1).
 Environment rig_environment(const RigEnvironment& environment);
 
-// Makes the layers show `background` (the radiance behind each pixel's
-// background samples, IlluminationImages::background) where geometry does not
-// cover a pixel: (1 - c) x background, in place of the photo's.
-void show_environment(RelitLayers& layers, const std::vector<float>& coverage, const Image& background);
+// `environment` turned by `degrees` about its up, counter-clockwise seen
+// from above (up towards the viewer): its forward turned so, in a new
+// probe (the image copied; the session keeps its sampling table). A
+// constant colour is itself.
+RigEnvironment turned_environment(const RigEnvironment& environment, float degrees);
+
+// What a pixel shows of `background` (the radiance behind its background
+// samples, IlluminationImages::background) where geometry does not cover it:
+// (1 - c) x background, the layer that replaces the photo's.
+Image seen_environment(const std::vector<float>& coverage, const Image& background);
 
 // The re-lit pixel: c·a·illumination + environment_scale·background.
 Image compose_relit(const RelitLayers& layers, const Image& illumination, float environment_scale);
+
+// The re-lit image of `rig` from its new illumination (rendered with
+// rig_lighting) on `layers` of pixels of coverage `coverage`: with a new
+// environment the pixels past the geometry show it (light.background,
+// already x environment_scale), else the photo's background x the scale.
+Image relit_image(RelitLayers layers, const std::vector<float>& coverage, const IlluminationImages& light,
+                  const Rig& rig);
 
 // Renders new illumination the way render_rig does: the analysis's
 // environment, interreflection off the recovered albedo, the analysis's seed
@@ -46,6 +60,8 @@ class NewIllumination {
 
   // The environment at scale 1 (the probes or background, per the strategy).
   const Environment& environment() const { return analysed_.environment(); }
+  // A rig's environment at scale 1: its new one, or the scene's.
+  Environment environment(const std::optional<RigEnvironment>& environment) const;
   // The rig's lights and its environment (the new one, or the scene's) x
   // environment_scale.
   Lighting rig_lighting(const Rig& rig) const;
@@ -56,6 +72,9 @@ class NewIllumination {
   IlluminationImages render(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
                             const RenderOptions& options, Progress& progress, const std::string& label,
                             bool first_surface_lights = true) const;
+  // The radiance of `lighting`'s environment behind each pixel's background
+  // samples (IlluminationImages::background) alone: no path is traced.
+  Image render_background(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting) const;
 
  private:
   const AnalysedScene& analysed_;

@@ -29,14 +29,6 @@ const char* to_string(FrameQuality quality) {
 
 namespace {
 
-// The interactive engine caches the scene's environment's light: a rig's own
-// `environment` is rendered by render_rig (relight render) only.
-void warn_about_a_new_environment(const Rig& rig) {
-  if (rig.environment)
-    spdlog::warn("the interactive engine shows the scene's environment, not the rig's new `environment` "
-                 "(relight render renders it)");
-}
-
 // How far a light's cached direct light has got, for the geometry it was rendered for.
 enum class Stage { none, interactive, antialiased, soft };
 
@@ -56,6 +48,35 @@ bool same_picture(const Light& a, const Light& b) {
 
 bool has_extent(const Light& light) { return LightSampler(light).needs_random(); }
 
+bool same_image(const Probe& a, const Probe& b) {
+  return a.mapping == b.mapping && a.image.width == b.image.width && a.image.height == b.image.height &&
+         std::equal(a.image.pixels.begin(), a.image.pixels.end(), b.image.pixels.begin());
+}
+
+// What the camera sees of `environment` past the geometry, for a preview:
+// (1 - c) x the radiance through the pixel's centre (not the mean over its
+// background samples).
+Image seen_through_pixel_centres(const RelightView& view, const Environment& environment) {
+  const std::vector<float>& coverage = view.coverage();
+  const ProbeEnvironment* probe = environment.probe_for(view.camera().position());
+  Image out(view.width(), view.height());
+  tbb::parallel_for(0, view.height(), [&](int y) {
+    for (int x = 0; x < view.width(); ++x) {
+      const float c = coverage[size_t(y) * view.width() + x];
+      if (c < 1.0f)
+        out.at(x, y) = (1.0f - c) * environment.radiance(probe, view.camera().ray_direction(x + 0.5f, y + 0.5f));
+    }
+  });
+  return out;
+}
+
+// Whether two rigs' environments light alike. An image is the same only as
+// the same shared probe: turning it makes a new one.
+bool same_environment(const std::optional<RigEnvironment>& a, const std::optional<RigEnvironment>& b) {
+  if (!a || !b) return !a && !b;
+  return a->image == b->image && a->color == b->color;
+}
+
 constexpr uint64_t kNothing = std::numeric_limits<uint64_t>::max();  // no image rendered yet
 
 }  // namespace
@@ -73,14 +94,25 @@ struct RelightSession::LightCache {
   bool pending() const { return light.enabled && direct_geometry != geometry; }
 };
 
+// The environment's light at scale 1, and what the camera sees of a new
+// environment past the geometry.
+struct RelightSession::EnvironmentLayer {
+  Image surface;             // on the surfaces, interreflection included; empty: none yet
+  Image background;          // (1 - c) x the new environment; empty: the view's own background
+  uint64_t edit = kNothing;  // the environment edit it was rendered for
+  bool refined = false;      // at the view's size (else the coarse preview)
+};
+
 struct RelightSession::Job {
-  enum class Kind { interactive, antialiased, soft, environment, bounce, final } kind;
+  enum class Kind { interactive, environment_preview, antialiased, soft, environment, bounce, final } kind;
   uint64_t light_id = 0;
-  uint64_t geometry = 0;  // of the light, when the job was made
+  uint64_t geometry = 0;  // of the light (of the environment), when the job was made
   uint64_t edit = 0;      // the session's, when the job was made
   Light light;
-  Rig rig;  // final
+  std::optional<RigEnvironment> environment;  // environment_preview, environment
+  Rig rig;                                    // final
   Image result;
+  Image background;  // environment_preview, environment: of a new environment
   std::atomic<bool> cancel{false};
   Progress progress{false};  // render_illumination's cancel flag
   bool done = false;
@@ -89,7 +121,7 @@ struct RelightSession::Job {
     cancel = true;
     progress.cancel();
   }
-  bool is_refinement() const { return kind != Kind::interactive; }
+  bool is_refinement() const { return kind != Kind::interactive && kind != Kind::environment_preview; }
 };
 
 // What a frame is composed of, taken under the lock.
@@ -111,7 +143,9 @@ RelightSession::RelightSession(const AnalysedScene& analysed, const Rig& rig, co
     : analysed_(analysed),
       options_(options),
       illumination_(analysed),
-      view_(std::make_unique<RelightView>(analysed, options.width, options.height)) {
+      view_(std::make_unique<RelightView>(analysed, options.width, options.height)),
+      new_environment_(rig.environment),
+      environment_(std::make_unique<EnvironmentLayer>()) {
   if (options_.backend == Backend::gl) {
     std::string why;
     fast_ = GlRelighter::open(analysed_.scene().mesh, view_->surfaces(), options_.shadow_maps, why);
@@ -125,7 +159,6 @@ RelightSession::RelightSession(const AnalysedScene& analysed, const Rig& rig, co
   if (!fast_)
     fast_ = std::make_unique<CpuDirectLight>(view_->surfaces(), analysed_.rays(), analysed_.analysis().options.seed);
 
-  warn_about_a_new_environment(rig);
   environment_scale_ = rig.environment_scale;
   for (const Light& light : rig.lights) {
     lights_.push_back(new_light_locked(light));
@@ -222,7 +255,6 @@ uint64_t RelightSession::remove_light(size_t index) {
 }
 
 uint64_t RelightSession::set_rig(const Rig& rig) {
-  warn_about_a_new_environment(rig);
   std::lock_guard lock(mutex_);
   std::vector<std::shared_ptr<LightCache>> old = std::move(lights_);
   lights_.clear();
@@ -245,6 +277,7 @@ uint64_t RelightSession::set_rig(const Rig& rig) {
   }
   environment_scale_ = rig.environment_scale;
   const uint64_t edit = edited_locked(0, false);
+  if (!same_environment(new_environment_, rig.environment)) set_environment_locked(rig.environment);
   for (const auto& cache : added) cache->geometry = edit;
   // New lights are rendered before anything refines further.
   if (!added.empty() && running_ && running_->is_refinement()) running_->request_cancel();
@@ -257,10 +290,27 @@ uint64_t RelightSession::set_environment_scale(float scale) {
   return edited_locked(0, false);
 }
 
+uint64_t RelightSession::set_environment(const std::optional<RigEnvironment>& environment) {
+  std::lock_guard lock(mutex_);
+  if (same_environment(new_environment_, environment)) return edit_;
+  const uint64_t edit = edited_locked(0, false);
+  set_environment_locked(environment);
+  return edit;
+}
+
+// The environment of the last edit: its preview comes next, before any
+// refinement (a running one gives way, as to a moved light).
+void RelightSession::set_environment_locked(const std::optional<RigEnvironment>& environment) {
+  new_environment_ = environment;
+  environment_edit_ = edit_;
+  if (running_ && running_->is_refinement()) running_->request_cancel();
+}
+
 Rig RelightSession::rig() const {
   std::lock_guard lock(mutex_);
   Rig rig;
   rig.environment_scale = environment_scale_;
+  rig.environment = new_environment_;
   for (const auto& cache : lights_) rig.lights.push_back(cache->light);
   return rig;
 }
@@ -320,6 +370,13 @@ std::unique_ptr<RelightSession::Job> RelightSession::next_job_locked(std::chrono
   for (const auto& cache : lights_)
     if (cache->pending() && (!moved || cache->geometry > moved->geometry)) moved = cache.get();
   if (moved) return for_light(Kind::interactive, *moved);
+  const auto for_environment = [&](Kind kind) {
+    job->kind = kind;
+    job->geometry = environment_edit_;
+    job->environment = new_environment_;
+    return std::move(job);
+  };
+  if (environment_->edit != environment_edit_) return for_environment(Kind::environment_preview);
 
   wake_at = last_edit_time_ + options_.settle;
   if (std::chrono::steady_clock::now() < wake_at) return nullptr;
@@ -330,19 +387,63 @@ std::unique_ptr<RelightSession::Job> RelightSession::next_job_locked(std::chrono
   for (const auto& cache : lights_)
     if (cache->light.enabled && cache->stage < Stage::soft && has_extent(cache->light))
       return for_light(Kind::soft, *cache);
-  if (environment_.empty()) {
-    job->kind = Kind::environment;
-    return job;
-  }
+  if (!environment_->refined) return for_environment(Kind::environment);
   for (const auto& cache : lights_)
     if (cache->light.enabled && cache->bounce_geometry != cache->geometry) return for_light(Kind::bounce, *cache);
   if (!final_) {
     job->kind = Kind::final;
     job->rig.environment_scale = environment_scale_;
+    job->rig.environment = new_environment_;
     for (const auto& cache : lights_) job->rig.lights.push_back(cache->light);
     return job;
   }
   return nullptr;
+}
+
+// The environment's layer at scale 1: its light on the surfaces — for the
+// preview on the coarse view (one path per sub-pixel sample, one bounce),
+// spread over the view; else at the view's size, as a light's
+// interreflection — and what the camera sees of a new environment.
+void RelightSession::render_environment(Job& job, bool preview) {
+  const RelightView& view = *view_;
+  Lighting lighting;
+  lighting.environment = environment_to_light(job.environment);
+  if (preview) {
+    if (!preview_view_) {
+      const int d = std::max(1, options_.environment_preview_divisor);
+      preview_view_ = std::make_unique<RelightView>(analysed_, std::max(1, view.width() / d),
+                                                    std::max(1, view.height() / d),
+                                                    options_.environment_preview_samples);
+    }
+    const RenderOptions quick{1, std::min(1, options_.final_render.max_bounces)};
+    const IlluminationImages coarse = illumination_.render(preview_view_->gbuffer(), preview_view_->camera(),
+                                                           lighting, quick, job.progress, "environment preview");
+    job.result = upsample_illumination(coarse.surface, preview_view_->coverage(), view.width(), view.height());
+  } else {
+    const RenderOptions bounce_options{options_.bounce_paths, options_.final_render.max_bounces};
+    job.result =
+        illumination_.render(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress, "environment")
+            .surface;
+  }
+  if (job.environment)
+    job.background = preview ? seen_through_pixel_centres(view, lighting.environment)
+                             : seen_environment(view.coverage(), illumination_.render_background(
+                                                                     view.gbuffer(), view.camera(), lighting));
+  job.done = true;
+}
+
+// The environment a job lights with. A new sky that is the last one turned
+// (the studio turns it a step at a time) keeps its sampling table: building
+// it again costs as much as the preview's paths.
+Environment RelightSession::environment_to_light(const std::optional<RigEnvironment>& environment) {
+  if (!environment || !environment->image) return illumination_.environment(environment);
+  const std::shared_ptr<const Probe>& image = environment->image;
+  if (image != sky_) {
+    sky_environment_ = sky_ && same_image(*sky_, *image) ? sky_environment_.turned(*image)
+                                                         : rig_environment(*environment);
+    sky_ = image;
+  }
+  return sky_environment_;
 }
 
 void RelightSession::run_job(Job& job) {
@@ -369,15 +470,10 @@ void RelightSession::run_job(Job& job) {
         job.done = render_direct_light(view.gbuffer(), analysed_.rays(), job.light, direct, job.result, &job.cancel);
         break;
       }
-      case Kind::environment: {
-        Lighting lighting;
-        lighting.environment = illumination_.environment();
-        job.result =
-            illumination_.render(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress, "environment")
-                .surface;
-        job.done = true;
+      case Kind::environment_preview:
+      case Kind::environment:
+        render_environment(job, job.kind == Kind::environment_preview);
         break;
-      }
       case Kind::bounce: {
         if (bounce_options.max_bounces == 0) {
           job.result = Image(view.width(), view.height());
@@ -396,7 +492,7 @@ void RelightSession::run_job(Job& job) {
         const IlluminationImages light =
             illumination_.render(view.gbuffer(), view.camera(), illumination_.rig_lighting(job.rig),
                                  options_.final_render, job.progress, "new illumination");
-        job.result = compose_relit(view.layers(), light.surface, job.rig.environment_scale);
+        job.result = relit_image(view.layers(), view.coverage(), light, job.rig);
         job.done = true;
         break;
       }
@@ -412,9 +508,17 @@ void RelightSession::install_locked(Job& job) {
     ++stats_.cancelled;
     return;
   }
-  ++(job.kind == Kind::interactive ? stats_.interactive_renders : stats_.refinements);
-  if (job.kind == Kind::environment) {
-    environment_ = std::move(job.result);
+  ++(job.kind == Kind::interactive           ? stats_.interactive_renders
+     : job.kind == Kind::environment_preview ? stats_.environment_previews
+                                             : stats_.refinements);
+  if (job.kind == Kind::environment_preview || job.kind == Kind::environment) {
+    // A preview of an environment changed since still shows it nearer than
+    // the one before; a refinement of it is worth nothing.
+    if (job.kind == Kind::environment && job.geometry != environment_edit_) return;
+    environment_->surface = std::move(job.result);
+    environment_->background = std::move(job.background);
+    environment_->edit = job.geometry;
+    environment_->refined = job.kind == Kind::environment;
     base_valid_ = false;
     dirty_ = true;
     return;
@@ -464,7 +568,10 @@ RelightSession::Composition RelightSession::composition_locked() {
   c.rebuild_base = !base_valid_ && !final_;
   if (!final_) base_valid_ = true;
   c.edit = edit_;
-  bool all_refined = true;
+  // An environment still to be shown is shown as it was at the edit that set it.
+  const bool environment_pending = environment_->edit != environment_edit_;
+  if (environment_pending) c.edit = std::min(c.edit, environment_->edit == kNothing ? 0 : environment_->edit);
+  bool all_refined = environment_->refined && !environment_pending;
   for (const auto& cache : lights_) {
     // A light still to be shown where it is now is shown where it was at
     // the edit that put it there (none: before the first edit).
@@ -497,6 +604,7 @@ void RelightSession::compose_and_publish(std::unique_lock<std::mutex>& lock) {
 
   if (!c.final) {
     const RelitLayers& layers = view_->layers();
+    const Image& background = environment_->background.empty() ? layers.background : environment_->background;
     const int w = view_->width(), h = view_->height();
     const auto term = [](const Image& image, size_t i) { return image.empty() ? Vec3::Zero() : image.pixels[i]; };
     if (c.rebuild_base) {
@@ -504,12 +612,11 @@ void RelightSession::compose_and_publish(std::unique_lock<std::mutex>& lock) {
       if (base_.width != w || base_.height != h) base_ = Image(w, h);
       tbb::parallel_for(tbb::blocked_range<size_t>(0, base_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
-          Vec3 light = c.scale * term(environment_, i);
+          Vec3 light = c.scale * term(environment_->surface, i);
           for (const auto& t : c.others)
             light += t.emission.cwiseProduct(term(t.light->direct, i) + term(t.light->bounce, i));
           if (c.focus) light += c.focus->emission.cwiseProduct(term(c.focus->light->bounce, i));
-          base_.pixels[i] =
-              layers.albedo_coverage.pixels[i].cwiseProduct(light) + c.scale * layers.background.pixels[i];
+          base_.pixels[i] = layers.albedo_coverage.pixels[i].cwiseProduct(light) + c.scale * background.pixels[i];
         }
       });
     }
@@ -535,9 +642,9 @@ void RelightSession::run_worker() {
   while (!stop_) {
     auto wake_at = std::chrono::steady_clock::time_point::max();
     std::unique_ptr<Job> job = next_job_locked(wake_at);
-    // A moved light is rendered before the frame is composed again: the frame
-    // would show nothing new without it.
-    if (dirty_ && (!job || job->kind != Job::Kind::interactive)) {
+    // A moved light or a new environment is rendered before the frame is
+    // composed again: the frame would show nothing new without it.
+    if (dirty_ && (!job || job->is_refinement())) {
       compose_and_publish(lock);
       continue;
     }

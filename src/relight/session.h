@@ -1,23 +1,30 @@
 // RelightSession: the interactive relighting engine. It holds an analysis
 // and a rig and keeps, per light, its direct light (and interreflection) for
-// unit emission — light transport is linear — so that a frame is
+// unit emission — light transport is linear — and the environment's light as
+// a layer of its own at scale 1, so that a frame is
 //
 //   albedo_coverage x (sum of emission_l x (direct_l + bounce_l)
-//                      + environment_scale x environment) + scale x background
+//                      + environment_scale x environment)
+//   + environment_scale x background
 //
-// and an edit re-renders only the light it changes: moving a light costs one
-// fast render of that light (one sample per pixel, CPU shadow rays or OpenGL
-// shadow maps), recolouring, re-powering or switching it costs no ray. Once
-// no edit has come for a moment the view refines on a worker thread — all
-// sub-pixel samples, more light samples for soft lights, the environment,
-// each light's interreflection — and last runs the render of
-// `relight render` (render_rig), so it converges to exactly that image.
+// (the background: the photo's past the geometry, or the rig's new
+// environment as the camera sees it there). An edit re-renders only what it
+// changes: moving a light costs one fast render of that light (one sample
+// per pixel, CPU shadow rays or OpenGL shadow maps), recolouring,
+// re-powering or switching it costs no ray; a new or turned environment
+// costs a preview of its light on a view a few times smaller (the lights
+// stay cached). Once no edit has come for a moment the view refines on a
+// worker thread — all sub-pixel samples, more light samples for soft
+// lights, the environment at full size, each light's interreflection — and
+// last runs the render of `relight render` (render_rig), so it converges to
+// exactly that image.
 #pragma once
 
 #include <chrono>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -37,13 +44,17 @@ struct SessionOptions {
   int bounce_paths = 16;        // per pixel, each light's interreflection and the environment before the final render
   RenderOptions final_render;   // the last refinement: `relight render`'s render (its --spp and --bounces)
   std::chrono::milliseconds settle{150};  // refinement starts once no edit came for this long
+  // The environment's preview: its light on a view this many times smaller
+  // each way, one path per sub-pixel sample, this many samples per pixel.
+  int environment_preview_divisor = 4;
+  int environment_preview_samples = 4;
   ShadowMapOptions shadow_maps;           // the OpenGL backend's
 };
 
 // How far a frame has got.
 enum class FrameQuality {
-  interactive,  // some light shown at one sample per pixel (moving, or not refined yet)
-  refining,     // every light refined; interreflection or the final render still to come
+  interactive,  // some light shown at one sample per pixel, or the environment as its preview
+  refining,     // every light and the environment refined; interreflection or the final render still to come
   converged,    // the final render: exactly render_rig's image (at the photo's size)
 };
 const char* to_string(FrameQuality quality);
@@ -57,6 +68,7 @@ struct Frame {
 // What the worker has done, to check that an edit costs what it should.
 struct SessionStats {
   uint64_t interactive_renders = 0;  // one light at one sample per pixel (a light moved or was added)
+  uint64_t environment_previews = 0; // the environment's light on the coarse view (it changed)
   uint64_t refinements = 0;          // finished refinement renders, the final one included
   uint64_t cancelled = 0;            // refinements given up because an edit made them stale
 };
@@ -88,6 +100,9 @@ class RelightSession {
   // light, in order): only lights that are new or moved are rendered again.
   uint64_t set_rig(const Rig& rig);
   uint64_t set_environment_scale(float scale);
+  // A new environment (none: the scene's own), or the same image turned:
+  // only the environment's layer is rendered again.
+  uint64_t set_environment(const std::optional<RigEnvironment>& environment);
   Rig rig() const;
   uint64_t last_edit() const;
   SessionStats stats() const;
@@ -101,6 +116,7 @@ class RelightSession {
 
  private:
   struct LightCache;
+  struct EnvironmentLayer;
   struct Job;
   struct Composition;
   void run_worker();
@@ -113,6 +129,9 @@ class RelightSession {
   std::shared_ptr<LightCache> new_light_locked(const Light& light);
   uint64_t insert_light_locked(size_t index, const Light& light);
   uint64_t edited_locked(uint64_t light_id, bool geometry);
+  void set_environment_locked(const std::optional<RigEnvironment>& environment);
+  void render_environment(Job& job, bool preview);
+  Environment environment_to_light(const std::optional<RigEnvironment>& environment);
 
   const AnalysedScene& analysed_;
   SessionOptions options_;
@@ -134,7 +153,12 @@ class RelightSession {
   Image spare_;        // a light's last interactive image, to render the next one into
   uint64_t edit_ = 1;  // edit 1: the rig the session started with
   std::chrono::steady_clock::time_point last_edit_time_;
-  Image environment_;                   // environment + its interreflection at scale 1; empty until rendered
+  std::optional<RigEnvironment> new_environment_;  // the rig's; none: the scene's
+  uint64_t environment_edit_ = 1;                  // the edit that last changed the environment
+  std::unique_ptr<EnvironmentLayer> environment_;
+  std::unique_ptr<RelightView> preview_view_;  // the environment preview's coarse view; made on first use
+  std::shared_ptr<const Probe> sky_;           // the new environment's image last prepared to light with,
+  Environment sky_environment_;                // and that environment (the worker's)
   std::shared_ptr<const Image> final_;  // the final render of the current state, if done
   Frame frame_;
   SessionStats stats_;

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -66,7 +67,7 @@ RelitLayers resampled_layers(const Scene& scene, const GBuffer& photo_gbuffer, c
 
 }  // namespace
 
-RelightView::RelightView(const AnalysedScene& analysed, int width, int height)
+RelightView::RelightView(const AnalysedScene& analysed, int width, int height, int samples_per_pixel)
     : camera_(analysed.scene().camera), gbuffer_(&analysed.gbuffer()) {
   const Scene& scene = analysed.scene();
   const Analysis& analysis = analysed.analysis();
@@ -76,14 +77,46 @@ RelightView::RelightView(const AnalysedScene& analysed, int width, int height)
   const bool photo_size = width == 0 || (width == scene.photo.width && height == scene.photo.height);
   if (photo_size) {
     layers_ = photo_layers(scene, analysis);
+    coverage_ = &analysis.coverage;
   } else {
     camera_ = Camera(scene.camera.spec(), width, height);
-    owned_gbuffer_ = std::make_unique<GBuffer>(camera_, analysed.rays(), photo_gbuffer.samples_per_pixel(),
+    owned_gbuffer_ = std::make_unique<GBuffer>(camera_, analysed.rays(),
+                                               samples_per_pixel > 0 ? samples_per_pixel : photo_gbuffer.samples_per_pixel(),
                                                analysis.options.seed, scene.path.string());
     gbuffer_ = owned_gbuffer_.get();
     layers_ = resampled_layers(scene, photo_gbuffer, analysis, analysed.environment(), camera_, *gbuffer_);
+    coverage_ = &gbuffer_->coverage();
   }
   surfaces_ = PixelSurfaces::central_samples(*gbuffer_);
+}
+
+Image upsample_illumination(const Image& coarse, const std::vector<float>& coarse_coverage, int width, int height) {
+  Image out(width, height);
+  const float sx = float(coarse.width) / float(width), sy = float(coarse.height) / float(height);
+  tbb::parallel_for(0, height, [&](int y) {
+    const float fy = std::clamp((y + 0.5f) * sy - 0.5f, 0.0f, float(coarse.height - 1));
+    const int y0 = int(fy), y1 = std::min(y0 + 1, coarse.height - 1);
+    const float ty = fy - float(y0);
+    for (int x = 0; x < width; ++x) {
+      const float fx = std::clamp((x + 0.5f) * sx - 0.5f, 0.0f, float(coarse.width - 1));
+      const int x0 = int(fx), x1 = std::min(x0 + 1, coarse.width - 1);
+      const float tx = fx - float(x0);
+      Vec3 sum = Vec3::Zero();
+      float weight = 0.0f;
+      const auto add = [&](int cx, int cy, float w) {
+        const size_t i = size_t(cy) * coarse.width + cx;
+        w *= coarse_coverage[i];
+        sum += w * coarse.pixels[i];
+        weight += w;
+      };
+      add(x0, y0, (1 - tx) * (1 - ty));
+      add(x1, y0, tx * (1 - ty));
+      add(x0, y1, (1 - tx) * ty);
+      add(x1, y1, tx * ty);
+      if (weight > 0.0f) out.at(x, y) = sum / weight;
+    }
+  });
+  return out;
 }
 
 }  // namespace relight

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 
 namespace relight {
 
@@ -16,6 +17,13 @@ ProbeEnvironment::ProbeEnvironment(const Probe& probe) : probe_(probe), frame_(p
           inside ? luminance(img.at(x, y)) * probe_pixel_solid_angle(probe_.mapping, uv, img.width, img.height) : 0.0f;
     }
   distribution_ = Distribution2D(weights, img.width, img.height);
+}
+
+ProbeEnvironment::ProbeEnvironment(const ProbeEnvironment& same_image, const Probe& probe)
+    : probe_(probe), frame_(probe.forward, probe.up), distribution_(same_image.distribution_) {
+  if (probe.mapping != same_image.probe_.mapping || probe.image.width != same_image.probe_.image.width ||
+      probe.image.height != same_image.probe_.image.height)
+    throw std::invalid_argument("ProbeEnvironment: a turned probe must keep its image and mapping");
 }
 
 Vec3 ProbeEnvironment::radiance(const Vec3& d) const {
@@ -56,6 +64,13 @@ Environment Environment::constant(const Vec3& radiance) {
 Environment Environment::from_probes(const std::vector<Probe>& probes) {
   Environment env;
   for (const auto& p : probes) env.probes_.push_back(std::make_shared<ProbeEnvironment>(p));
+  return env;
+}
+
+Environment Environment::turned(const Probe& probe) const {
+  if (probes_.size() != 1) throw std::invalid_argument("Environment::turned: not a one-probe environment");
+  Environment env = *this;
+  env.probes_ = {std::make_shared<ProbeEnvironment>(*probes_.front(), probe)};
   return env;
 }
 

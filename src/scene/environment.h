@@ -16,6 +16,10 @@ namespace relight {
 class ProbeEnvironment {
  public:
   explicit ProbeEnvironment(const Probe& probe);
+  // `probe`, which shows the same image as `same_image` in another frame (a
+  // turned sky): the sampling table, a function of image positions alone,
+  // is taken over instead of built again.
+  ProbeEnvironment(const ProbeEnvironment& same_image, const Probe& probe);
   Vec3 radiance(const Vec3& d) const;
   // Samples a direction; returns false where the sample fell outside the image.
   bool sample(const Vec2& u, Vec3& d, float& pdf) const;
@@ -33,6 +37,9 @@ class Environment {
   // A constant radiance from every direction.
   static Environment constant(const Vec3& radiance);
   static Environment from_probes(const std::vector<Probe>& probes);
+  // This one-probe environment with its image in the frame of `probe`, which
+  // shows the same image (see ProbeEnvironment's).
+  Environment turned(const Probe& probe) const;
 
   // All radiance is multiplied by `scale` (the rig's environment_scale).
   void set_scale(float scale) { scale_ = scale; }
