@@ -521,6 +521,20 @@ TEST(AnalyzeWithWeakLights, WarnsOfAlbedoAboveOne) {
   EXPECT_EQ(fine.err.find("above 1"), std::string::npos) << fine.err;
 }
 
+// The mean albedo an analysis folder holds over the pixels wholly on the
+// geometry, of which there must be more than `at_least`.
+Vec3 mean_albedo_on_the_geometry(const std::filesystem::path& analysis, int at_least) {
+  const Image albedo = read_image(analysis / "albedo_surface.exr");
+  int w, h;
+  const std::vector<float> mask = read_scalar_image(analysis / "mask.exr", w, h);
+  Vec3 sum = Vec3::Zero();
+  int n = 0;
+  for (size_t p = 0; p < albedo.size(); ++p)
+    if (mask[p] >= 0.999f) sum += albedo.pixels[p], ++n;
+  EXPECT_GT(n, at_least) << analysis;
+  return n ? Vec3(sum / float(n)) : Vec3::Zero();
+}
+
 // A grey card (here: the whole 8 x 6 photo, of albedo [0.5, 0.4, 0.3]) fixes
 // the exposure and white balance: `fit` scales the lights so that the
 // analysis then recovers that albedo there.
@@ -533,15 +547,7 @@ TEST(FitWithReference, TheReferenceAlbedoComesBack) {
   EXPECT_EQ(r.err.find("trade off"), std::string::npos) << r.err;
   const auto a = run_cli({"analyze", (f / "fitted.json").string(), "-o", (f / "analysis").string(), "--spp", "16"});
   ASSERT_EQ(a.status, 0) << a.err;
-  const Image albedo = read_image(f / "analysis" / "albedo_surface.exr");
-  int w, h;
-  const std::vector<float> mask = read_scalar_image(f / "analysis" / "mask.exr", w, h);
-  Vec3 sum = Vec3::Zero();
-  int n = 0;
-  for (size_t p = 0; p < albedo.size(); ++p)
-    if (mask[p] >= 0.999f) sum += albedo.pixels[p], ++n;
-  ASSERT_GT(n, 10);
-  const Vec3 mean = sum / float(n);
+  const Vec3 mean = mean_albedo_on_the_geometry(f / "analysis", 10);
   std::printf("[ figures  ] albedo on the reference after fit: %.3f %.3f %.3f (given 0.5 0.4 0.3)\n", mean.x(),
               mean.y(), mean.z());
   EXPECT_NEAR(mean.x(), 0.5f, 0.05f);
@@ -709,15 +715,7 @@ TEST(FitWithReference, AnObjectOfTheGeometryAsTheCard) {
   EXPECT_EQ(json::parse(test::read_text(f / "fitted.json"))["reference"]["object"], "grey_card");
   const auto a = run_cli({"analyze", (f / "fitted.json").string(), "-o", (f / "analysis").string(), "--spp", "16"});
   ASSERT_EQ(a.status, 0) << a.err;
-  const Image recovered = read_image(f / "analysis" / "albedo_surface.exr");
-  int w, h;
-  const std::vector<float> mask = read_scalar_image(f / "analysis" / "mask.exr", w, h);
-  Vec3 sum = Vec3::Zero();
-  int n = 0;
-  for (size_t p = 0; p < recovered.size(); ++p)
-    if (mask[p] >= 0.999f) sum += recovered.pixels[p], ++n;
-  ASSERT_GT(n, 100);
-  const Vec3 mean = sum / float(n);
+  const Vec3 mean = mean_albedo_on_the_geometry(f / "analysis", 100);
   std::printf("[ figures  ] albedo after fit with the card as an object: %.3f %.3f %.3f (true 0.5 0.4 0.3)\n",
               mean.x(), mean.y(), mean.z());
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c] / albedo[c], 1.0f, 0.05f) << c;
