@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/analysed_scene.h"
+#include "gui/light_shapes.h"
 #include "gui/studio_scene.h"
 #include "render/gbuffer.h"
 
@@ -20,6 +21,7 @@ namespace {
 constexpr float kFieldOfViewDeg = 45.0f;
 constexpr float kPickRadius = 10.0f;  // pixels
 constexpr float kLargeStep = 10.0f;   // Shift
+constexpr float kSunArrow = 0.3f;     // of the scene's size
 
 // 1, 2 or 5 times a power of ten, the nearest at or below `x`; a negative
 // power divides, so that 0.05 is the float nearest 0.05.
@@ -37,11 +39,6 @@ Vec3 any_perpendicular(const Vec3& n) {
   Vec3 a, b;
   orthonormal_basis(n, a, b);
   return a;
-}
-
-QColor dot_colour(bool selected, bool enabled) {
-  if (selected) return QColor(220, 40, 40);
-  return enabled ? QColor(40, 110, 230) : QColor(240, 200, 30);
 }
 
 // What the photo's camera sees, per axis between the 10th and 90th
@@ -111,11 +108,7 @@ void GeometryView::set_document(LightingDocument* document) {
     seen_centre_ = seen.isEmpty() ? scene.camera.spec().look_at : Vec3(seen.center());
     scene_size_ = seen.isEmpty() ? 1.0f : std::max(seen.diagonal().norm(), 1e-3f);
     move_step_ = nice_step(scene_size_ / 100.0f);
-    for (auto signal : {&LightingDocument::lightChanged, &LightingDocument::lightInserted,
-                        &LightingDocument::lightRemoved})
-      connect(document_, signal, this, qOverload<>(&QWidget::update));
-    connect(document_, &LightingDocument::rigReset, this, qOverload<>(&QWidget::update));
-    connect(document_, &LightingDocument::soloChanged, this, qOverload<>(&QWidget::update));
+    repaint_on_light_edits(*document_, *this);
     connect(document_, &QObject::destroyed, this, [this] { set_document(nullptr); });
   }
   reset_orbit();
@@ -201,6 +194,10 @@ Vec3 GeometryView::marker_position(const Light& light) const {
   return centre_ - 0.45f * scene_size_ * light.direction.normalized();
 }
 
+float GeometryView::shape_reach(const Light& light) const {
+  return light.type == LightType::spot ? spot_reach(*document_, light) : kSunArrow * scene_size_;
+}
+
 void GeometryView::geometry_changed() {
   mesh_image_ = QImage();
   update();
@@ -276,15 +273,11 @@ void GeometryView::draw_lights(QPainter& painter, std::vector<Label>& labels) co
     const Vec3 at = marker_position(light);
     const auto p = project(at);
     if (!p) continue;
-    const QColor colour = dot_colour(i == selected_, document_->shown_light(i).enabled);
-    if (light.type != LightType::point) {
-      // Which way it shines: a short line towards where the light goes.
-      const Vec3 towards = at + 0.08f * scene_size_ * light.direction.normalized();
-      if (const auto q = project(towards)) {
-        painter.setPen(QPen(colour, 2.0));
-        painter.drawLine(*p, *q);
-      }
-    }
+    const QColor colour = light_colour(i == selected_, document_->shown_light(i).enabled);
+    painter.setPen(QPen(colour, i == selected_ ? 2.0 : 1.4));
+    painter.setBrush(Qt::NoBrush);
+    draw_polylines(painter, light_shape(light, at, eye_position(), shape_reach(light)),
+                   [this](const Vec3& q) { return project(q); });
     painter.setPen(QPen(QColor(20, 20, 20), 1.5));
     painter.setBrush(colour);
     const double r = i == selected_ ? 7.5 : 6.0;

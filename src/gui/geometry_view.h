@@ -1,6 +1,7 @@
 // GeometryView (thesis 6.2.1): the scene's mesh seen from an orbiting
 // viewpoint, with the photo's camera and every light drawn as a dot — red
-// the selected one, blue a shown light, yellow a switched-off one. Drawn
+// the selected one, blue a shown light, yellow a switched-off one — and its
+// shape (light_shapes.h). Drawn
 // with QPainter (flat-shaded triangles, back to front), so it needs no
 // OpenGL. Mouse: click a dot to select it, drag it to move the light in the
 // plane facing the view, drag elsewhere to orbit, wheel to zoom. Keys
@@ -56,6 +57,7 @@ class GeometryView : public QWidget {
   // The move of a key press (arrows, Home, End, with Shift), if it is one.
   std::optional<Vec3> key_move(int key, Qt::KeyboardModifiers modifiers) const;
 
+  Vec3 eye_position() const { return eye().position; }  // the orbit's viewpoint
   // Where a world point appears in the widget, if in front of the eye.
   std::optional<QPointF> project(const Vec3& p) const;
   // Where light `index`'s dot is drawn (a sun's: out along where it shines from).
@@ -96,6 +98,7 @@ class GeometryView : public QWidget {
   };
   void draw_camera(QPainter& painter, std::vector<Label>& labels) const;
   void draw_lights(QPainter& painter, std::vector<Label>& labels) const;
+  float shape_reach(const Light& light) const;  // a spot's cone's length, a sun's arrow's
   // Each label on a dark box beside its marker (place_labels).
   void draw_labels(QPainter& painter, const std::vector<Label>& labels) const;
   int light_at(const QPointF& point) const;

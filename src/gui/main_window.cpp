@@ -100,6 +100,7 @@ MainWindow::~MainWindow() {
   task_.wait();
   undo_.clear();
   lights_->set_document(nullptr);
+  photo_view().set_document(nullptr);
 }
 
 void MainWindow::connect_panels() {
@@ -251,6 +252,11 @@ void MainWindow::make_menus() {
     action->setShortcutContext(Qt::WidgetShortcut);
     geometry.addAction(action);
   }
+  view->addSeparator();
+  QAction* shapes = view->addAction(tr("Show &Light Shapes on the Photo"));
+  shapes->setCheckable(true);
+  shapes->setChecked(photo_view().shapes_shown());
+  connect(shapes, &QAction::toggled, &photo_view(), &PhotoView::set_shapes_shown);
 }
 
 void MainWindow::run_task(const QString& label, BackgroundTask::Work work, std::function<void(const QString&)> done) {
@@ -302,6 +308,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   choose_view_size(scene->analysed->scene().photo, options_.max_view_width, session);
   undo_.clear();
   lights_->set_document(nullptr);
+  photo_view().set_document(nullptr);
   document_.reset();
   scene_ = std::move(scene);
   document_ = std::make_unique<LightingDocument>(scene_, rig, session);
@@ -309,6 +316,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   rig_path_ = loaded_rig_path;
 
   lights_->set_document(document_.get());
+  photo_view().set_document(document_.get());
   connect(document_.get(), &LightingDocument::lightChanged, this, [this](int index) {
     if (index == selected_) lights_->show_details(index);
   });
@@ -568,6 +576,7 @@ void MainWindow::select_light(int index) {
   if (!document_ || index >= document_->light_count()) index = -1;
   selected_ = index;
   lights_->show_selection(index);
+  photo_view().set_selected(index);
   update_actions();
 }
 

@@ -5,9 +5,20 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gui/light_shapes.h"
+#include "gui/lighting_document.h"
 #include "gui/tone_map.h"
 
 namespace relight::gui {
+
+namespace {
+
+// The sun's arrow starts this far (m) in front of the camera and is this
+// long: only its direction on the picture means anything.
+constexpr float kSunArrowDepth = 1.0f, kSunArrowLength = 0.3f;
+constexpr double kDotRadius = 4.0;  // pixels
+
+}  // namespace
 
 PhotoView::PhotoView(QWidget* parent) : QWidget(parent) {
   setFocusPolicy(Qt::NoFocus);
@@ -39,6 +50,59 @@ void PhotoView::set_exposure(float stops) {
 void PhotoView::set_split(double share) {
   split_ = std::clamp(share, 0.0, 1.0);
   compose();
+}
+
+void PhotoView::set_document(LightingDocument* document) {
+  if (document_) disconnect(document_, nullptr, this, nullptr);
+  document_ = document;
+  selected_ = -1;
+  if (document_) {
+    repaint_on_light_edits(*document_, *this);
+    connect(document_, &QObject::destroyed, this, [this] { set_document(nullptr); });
+  }
+  update();
+}
+
+void PhotoView::set_selected(int index) {
+  selected_ = index;
+  update();
+}
+
+void PhotoView::set_shapes_shown(bool shown) {
+  shapes_shown_ = shown;
+  update();
+}
+
+Vec3 PhotoView::sun_arrow_origin() const {
+  const Camera& camera = document_->session().view().camera();
+  const Vec3 ray = camera.ray_direction(0.12f * float(camera.width()), 0.15f * float(camera.height()));
+  return camera.position() + kSunArrowDepth / ray.dot(camera.forward()) * ray;
+}
+
+void PhotoView::draw_light_shapes(QPainter& painter) const {
+  const Camera& camera = document_->session().view().camera();
+  const auto project = [&](const Vec3& p) -> std::optional<QPointF> {
+    if (const auto q = camera.project(p)) return widget_position(QPointF(q->x(), q->y()));
+    return std::nullopt;
+  };
+  painter.setRenderHint(QPainter::Antialiasing);
+  for (int i = 0; i < document_->light_count(); ++i) {
+    const Light& light = document_->light(i);
+    const bool sun = light.type == LightType::directional;
+    const Vec3 at = sun ? sun_arrow_origin() : light.position;
+    const auto p = project(at);
+    if (!p) continue;  // behind the camera
+    const QColor colour = light_colour(i == selected_, document_->shown_light(i).enabled);
+    painter.setPen(QPen(colour, i == selected_ ? 2.5 : 1.8));
+    painter.setBrush(Qt::NoBrush);
+    draw_polylines(painter,
+                   light_shape(light, at, camera.position(),
+                               sun ? kSunArrowLength : spot_reach(*document_, light)),
+                   project);
+    painter.setPen(QPen(QColor(20, 20, 20), 1.0));
+    painter.setBrush(colour);
+    painter.drawEllipse(*p, kDotRadius, kDotRadius);
+  }
 }
 
 void PhotoView::compose() {
@@ -102,6 +166,7 @@ void PhotoView::paintEvent(QPaintEvent*) {
     if (x - r.left() > 70) tag(tr("Before"), x - metrics.horizontalAdvance(tr("Before")) - 20);
     if (r.right() - x > 70) tag(tr("After"), x + 8);
   }
+  if (document_ && shapes_shown_) draw_light_shapes(painter);
 }
 
 void PhotoView::mousePressEvent(QMouseEvent* event) {

@@ -2,7 +2,8 @@
 // before/after split against the original photo (left of the split: the
 // photo as taken). A click on the picture reports the pixel and the keys
 // held, for selecting the light there or placing one in front of what was
-// clicked.
+// clicked. Over the picture, each light's shape (light_shapes.h) projected
+// with the re-lit view's camera, coloured as in the geometry view.
 #pragma once
 
 #include <QImage>
@@ -11,8 +12,11 @@
 #include <optional>
 
 #include "core/image.h"
+#include "scene/light.h"
 
 namespace relight::gui {
+
+class LightingDocument;
 
 class PhotoView : public QWidget {
   Q_OBJECT
@@ -28,6 +32,14 @@ class PhotoView : public QWidget {
   // Share of the width, from the left, that shows the original photo (0..1).
   void set_split(double share);
   double split() const { return split_; }
+  // The lights whose shapes are drawn over the picture (none: no overlay).
+  void set_document(LightingDocument* document);
+  void set_selected(int index);
+  void set_shapes_shown(bool shown);
+  bool shapes_shown() const { return shapes_shown_; }
+  // Where a sun's arrow starts: a point in front of the camera seen near
+  // the picture's top-left corner, in world space.
+  Vec3 sun_arrow_origin() const;
 
   // What is shown, at the re-lit image's size (empty before the first frame).
   const QImage& displayed_image() const { return displayed_; }
@@ -49,11 +61,15 @@ class PhotoView : public QWidget {
  private:
   QRectF picture_rect() const;  // where the image is drawn: fitted, centred
   void compose();
+  void draw_light_shapes(QPainter& painter) const;
 
   std::shared_ptr<const Image> photo_, relit_;
   QImage photo_image_, relit_image_, displayed_;
   float exposure_ = 0.0f;
   double split_ = 0.0;
+  LightingDocument* document_ = nullptr;
+  int selected_ = -1;
+  bool shapes_shown_ = true;
 };
 
 }  // namespace relight::gui
