@@ -1079,7 +1079,7 @@ class StudioTest : public QObject {
     document().set_light(0, spot);
     window_->select_light(0);
     const std::vector<Polyline> lines = light_shape(spot, spot.position, camera.position(),
-                                                    spot_reach(document(), spot));
+                                                    aim_reach(document(), spot));
     const auto end = camera.project(lines[1][1]);  // where a line from the apex meets the ring
     QVERIFY(end.has_value());
     const QPointF at = view.widget_position(QPointF(end->x(), end->y()));
@@ -1088,6 +1088,63 @@ class StudioTest : public QObject {
     QVERIFY(shows_colour(view.grab().toImage(), at, light_colour(true, true)));
     view.set_shapes_shown(false);
     QVERIFY(!shows_colour(view.grab().toImage(), at, light_colour(true, true)));
+  }
+
+  // Dragging the selected lamp's dot on the photo moves it across the
+  // surface under the cursor at its height above the surface below it, one
+  // undo step; dragging a spot's aim square aims it at the surface there.
+  void dragging_handles_on_the_photo_moves_and_aims_the_light() {
+    show_converged_frame();
+    PhotoView& view = window_->photo_view();
+    window_->select_light(0);
+    const Light start = document().light(0);
+    const Camera& camera = document().session().view().camera();
+    const RayScene& rays = document().studio_scene().analysed->rays();
+    const Vec3 up = document().scene().camera.spec().up.normalized();
+    const auto surface = [&](QPoint widget) {
+      const auto pixel = view.image_position(widget);
+      SurfacePoint hit;
+      [&] {
+        QVERIFY(pixel.has_value());
+        QVERIFY(rays.intersect(camera.position(), camera.ray_direction(float(pixel->x()), float(pixel->y())), hit));
+      }();
+      return hit.position;
+    };
+    const auto drag = [&](QPoint from, QPoint to) {
+      QTest::mousePress(&view, Qt::LeftButton, {}, from);
+      QMouseEvent move(QEvent::MouseMove, QPointF(to), view.mapToGlobal(QPointF(to)), Qt::NoButton, Qt::LeftButton,
+                       {});
+      QCoreApplication::sendEvent(&view, &move);
+      QTest::mouseRelease(&view, Qt::LeftButton, {}, to);
+    };
+    SurfacePoint below;
+    QVERIFY(rays.intersect(start.position, -up, below));
+    const auto dot = camera.project(start.position);
+    QVERIFY(dot.has_value());
+    const QPoint from = view.widget_position(QPointF(dot->x(), dot->y())).toPoint();
+    const QPoint to = from + QPoint(-80, 60);
+    drag(from, to);
+    const Vec3 expected = surface(to) + below.distance * up;
+    QVERIFY2((document().light(0).position - expected).norm() < 1e-4f,
+             qPrintable(QString("moved %1 m off").arg((document().light(0).position - expected).norm())));
+    QVERIFY((document().light(0).position - start.position).norm() > 0.1f);
+    QCOMPARE(window_->undo_stack().count(), 1);
+    QCOMPARE(window_->undo_stack().undoText(), QStringLiteral("Drag light"));
+    window_->undo_stack().undo();
+    expect_same_light(document().light(0), start);
+
+    Light spot = start;
+    spot.type = LightType::spot;
+    spot.direction = -up;
+    document().set_light(0, spot);
+    const auto aim = camera.project(spot.position + aim_reach(document(), spot) * spot.direction);
+    QVERIFY(aim.has_value());
+    const QPoint aim_from = view.widget_position(QPointF(aim->x(), aim->y())).toPoint();
+    const QPoint aim_to = aim_from + QPoint(70, 30);
+    drag(aim_from, aim_to);
+    const Vec3 towards = (surface(aim_to) - spot.position).normalized();
+    QVERIFY((document().light(0).direction - towards).norm() < 1e-4f);
+    QVERIFY((document().light(0).position - spot.position).norm() == 0.0f);  // aimed, not moved
   }
 
   // The geometry view draws an area light's rectangle with its corners

@@ -195,7 +195,7 @@ Vec3 GeometryView::marker_position(const Light& light) const {
 }
 
 float GeometryView::shape_reach(const Light& light) const {
-  return light.type == LightType::spot ? spot_reach(*document_, light) : kSunArrow * scene_size_;
+  return light.type == LightType::spot ? aim_reach(*document_, light) : kSunArrow * scene_size_;
 }
 
 void GeometryView::geometry_changed() {

@@ -75,7 +75,7 @@ std::vector<Polyline> light_shape(const Light& light, const Vec3& at, const Vec3
   return lines;
 }
 
-float spot_reach(const LightingDocument& document, const Light& light) {
+float aim_reach(const LightingDocument& document, const Light& light) {
   const float fallback = 0.5f * document.scene().mesh.bounds().diagonal().norm();
   SurfacePoint hit;
   if (document.studio_scene().analysed->rays().intersect(light.position, light.direction.normalized(), hit, fallback))

@@ -28,9 +28,9 @@ using Polyline = std::vector<Vec3>;  // a closed one repeats its first point
 // arrow, `reach` long, the way it shines.
 std::vector<Polyline> light_shape(const Light& light, const Vec3& at, const Vec3& eye, float reach);
 
-// How far a spot's cone reaches: to the first surface it aims at, or half
-// the geometry's size where it aims at nothing.
-float spot_reach(const LightingDocument& document, const Light& light);
+// How far a spot's cone (or an area light's aim) reaches: to the first
+// surface it aims at, or half the geometry's size where it aims at nothing.
+float aim_reach(const LightingDocument& document, const Light& light);
 
 // Repaints `view` whenever `document`'s lights change: an edit, an added or
 // removed light, a solo, a new rig.

@@ -106,11 +106,15 @@ MainWindow::~MainWindow() {
 void MainWindow::connect_panels() {
   GeometryView* geometry = &lights_->geometry_view();
   connect(geometry, &GeometryView::lightClicked, this, &MainWindow::select_light);
-  connect(geometry, &GeometryView::lightDragged, this,
-          [this](int index, const Light& light) { document_->set_light(index, light); });
-  connect(geometry, &GeometryView::lightDropped, this, [this](int index, const Light& before, const Light& after) {
+  // A drag in either view edits the light live and is one undo step when let go.
+  const auto dragged = [this](int index, const Light& light) { document_->set_light(index, light); };
+  const auto dropped = [this](int index, const Light& before, const Light& after) {
     undo_.push(new EditLightCommand(*document_, index, before, after, tr("Drag light")));
-  });
+  };
+  connect(geometry, &GeometryView::lightDragged, this, dragged);
+  connect(geometry, &GeometryView::lightDropped, this, dropped);
+  connect(&photo_view(), &PhotoView::lightDragged, this, dragged);
+  connect(&photo_view(), &PhotoView::lightDropped, this, dropped);
   connect(geometry, &GeometryView::moveRequested, this, &MainWindow::move_selected_light);
   connect(geometry, &GeometryView::deleteRequested, this, [this] {
     if (selected_ >= 0) delete_light(selected_);

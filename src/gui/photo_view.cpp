@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/analysed_scene.h"
 #include "gui/light_shapes.h"
+#include "gui/studio_scene.h"
 #include "gui/lighting_document.h"
 #include "gui/tone_map.h"
 
@@ -17,6 +19,7 @@ namespace {
 // long: only its direction on the picture means anything.
 constexpr float kSunArrowDepth = 1.0f, kSunArrowLength = 0.3f;
 constexpr double kDotRadius = 4.0;  // pixels
+constexpr double kHandleRadius = 8.0;  // pixels a press may miss a handle by
 
 }  // namespace
 
@@ -25,7 +28,8 @@ PhotoView::PhotoView(QWidget* parent) : QWidget(parent) {
   setAttribute(Qt::WA_OpaquePaintEvent);
   setCursor(Qt::CrossCursor);
   setToolTip(tr("Click a light to select it; Ctrl+click, or click with the Place Light tool (P), to put the "
-                "selected light in front of the surface"));
+                "selected light in front of the surface.\nDrag the selected light's dot to move it over the "
+                "surfaces, its square to aim it."));
 }
 
 void PhotoView::set_photo(std::shared_ptr<const Image> photo) {
@@ -79,12 +83,14 @@ Vec3 PhotoView::sun_arrow_origin() const {
   return camera.position() + kSunArrowDepth / ray.dot(camera.forward()) * ray;
 }
 
+std::optional<QPointF> PhotoView::shown(const Vec3& p) const {
+  if (const auto q = document_->session().view().camera().project(p)) return widget_position(QPointF(q->x(), q->y()));
+  return std::nullopt;
+}
+
 void PhotoView::draw_light_shapes(QPainter& painter) const {
   const Camera& camera = document_->session().view().camera();
-  const auto project = [&](const Vec3& p) -> std::optional<QPointF> {
-    if (const auto q = camera.project(p)) return widget_position(QPointF(q->x(), q->y()));
-    return std::nullopt;
-  };
+  const auto project = [this](const Vec3& p) { return shown(p); };
   painter.setRenderHint(QPainter::Antialiasing);
   for (int i = 0; i < document_->light_count(); ++i) {
     const Light& light = document_->light(i);
@@ -97,12 +103,53 @@ void PhotoView::draw_light_shapes(QPainter& painter) const {
     painter.setBrush(Qt::NoBrush);
     draw_polylines(painter,
                    light_shape(light, at, camera.position(),
-                               sun ? kSunArrowLength : spot_reach(*document_, light)),
+                               sun ? kSunArrowLength : aim_reach(*document_, light)),
                    project);
     painter.setPen(QPen(QColor(20, 20, 20), 1.0));
     painter.setBrush(colour);
     painter.drawEllipse(*p, kDotRadius, kDotRadius);
   }
+  if (const auto aim = aim_handle()) {
+    painter.setPen(QPen(light_colour(true, true), 2.0));
+    painter.setBrush(Qt::NoBrush);
+    painter.drawRect(QRectF(*aim - QPointF(kDotRadius, kDotRadius), QSizeF(2 * kDotRadius, 2 * kDotRadius)));
+  }
+}
+
+std::optional<QPointF> PhotoView::position_handle() const {
+  if (!document_ || selected_ < 0 || selected_ >= document_->light_count()) return std::nullopt;
+  const Light& light = document_->light(selected_);
+  if (light.type == LightType::directional) return std::nullopt;  // a sun has no position
+  return shown(light.position);
+}
+
+std::optional<QPointF> PhotoView::aim_handle() const {
+  if (!position_handle()) return std::nullopt;
+  const Light& light = document_->light(selected_);
+  if (light.type != LightType::spot && light.type != LightType::area) return std::nullopt;
+  return shown(light.position + aim_reach(*document_, light) * light.direction.normalized());
+}
+
+PhotoView::Handle PhotoView::handle_at(const QPointF& widget_point) const {
+  const auto near = [&](const std::optional<QPointF>& handle) {
+    return handle && std::hypot(handle->x() - widget_point.x(), handle->y() - widget_point.y()) <= kHandleRadius;
+  };
+  if (!shapes_shown_) return Handle::none;
+  if (near(aim_handle())) return Handle::aim;
+  return near(position_handle()) ? Handle::position : Handle::none;
+}
+
+Vec3 PhotoView::world_up() const { return document_->scene().camera.spec().up.normalized(); }
+
+std::optional<Vec3> PhotoView::surface_at(const QPointF& widget_point) const {
+  const auto pixel = image_position(widget_point);
+  if (!pixel) return std::nullopt;
+  const Camera& camera = document_->session().view().camera();
+  SurfacePoint hit;
+  if (!document_->studio_scene().analysed->rays().intersect(
+          camera.position(), camera.ray_direction(float(pixel->x()), float(pixel->y())), hit))
+    return std::nullopt;
+  return hit.position;
 }
 
 void PhotoView::compose() {
@@ -171,7 +218,39 @@ void PhotoView::paintEvent(QPaintEvent*) {
 
 void PhotoView::mousePressEvent(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton) return;
+  drag_ = handle_at(event->position());
+  dragged_ = false;
+  if (drag_ != Handle::none) {
+    drag_light_ = document_->light(selected_);
+    // Nothing below (a lamp over the edge of the geometry): it keeps its
+    // height above what is under the cursor.
+    SurfacePoint below;
+    const auto under = surface_at(event->position());
+    drag_height_ = document_->studio_scene().analysed->rays().intersect(drag_light_.position, -world_up(), below)
+                       ? below.distance
+                       : under ? (drag_light_.position - *under).dot(world_up()) : 0.0f;
+    return;
+  }
   if (const auto p = image_position(event->position())) emit photoClicked(*p, event->modifiers());
+}
+
+void PhotoView::mouseMoveEvent(QMouseEvent* event) {
+  if (drag_ == Handle::none || !document_) return;
+  const auto surface = surface_at(event->position());
+  if (!surface) return;
+  Light moved = document_->light(selected_);
+  if (drag_ == Handle::position) {
+    moved.position = *surface + drag_height_ * world_up();
+  } else if (const Vec3 aim = *surface - moved.position; aim.norm() > 0.0f) {
+    moved.direction = aim.normalized();
+  }
+  dragged_ = true;
+  emit lightDragged(selected_, moved);
+}
+
+void PhotoView::mouseReleaseEvent(QMouseEvent*) {
+  if (drag_ != Handle::none && dragged_) emit lightDropped(selected_, drag_light_, document_->light(selected_));
+  drag_ = Handle::none;
 }
 
 }  // namespace relight::gui
