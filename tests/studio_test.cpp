@@ -1147,6 +1147,37 @@ class StudioTest : public QObject {
     QVERIFY((document().light(0).position - spot.position).norm() == 0.0f);  // aimed, not moved
   }
 
+  // Dragging the selected spot's aim square in the geometry view aims it
+  // through where the mouse is let go, without moving it; one undo step.
+  void dragging_the_aim_square_in_the_geometry_view_aims_the_spot() {
+    Light spot = document().light(0);
+    spot.type = LightType::spot;
+    spot.direction = Vec3(0.3f, 0.2f, -1.0f).normalized();
+    document().set_light(0, spot);
+    window_->select_light(0);
+    GeometryView& view = window_->geometry_view();
+    const auto aim = view.aim_point(spot);
+    QVERIFY(aim.has_value());
+    const auto square = view.project(*aim);
+    QVERIFY(square.has_value());
+    const QPoint by(25, -15);
+    drag_in_geometry_view(square->toPoint(), by);
+    const Light aimed = document().light(0);
+    QVERIFY((aimed.position - spot.position).norm() == 0.0f);
+    QVERIFY(aimed.direction.dot(spot.direction) < 0.999f);
+    // The new aim, seen from the view, runs from the light through the release point.
+    const auto apex = view.project(aimed.position);
+    const auto along = view.project(aimed.position + 1e-3f * aimed.direction);
+    QVERIFY(apex && along);
+    const QPointF seen = *along - *apex, wanted = QPointF(square->toPoint() + by) - *apex;
+    const double cross = (seen.x() * wanted.y() - seen.y() * wanted.x()) / std::hypot(seen.x(), seen.y());
+    QVERIFY2(std::abs(cross) < 1.0, qPrintable(QString("%1 px off").arg(cross)));  // within a pixel of the line
+    QVERIFY(seen.x() * wanted.x() + seen.y() * wanted.y() > 0.0);
+    QCOMPARE(window_->undo_stack().undoText(), QStringLiteral("Drag light"));
+    window_->undo_stack().undo();
+    expect_same_light(document().light(0), spot);
+  }
+
   // The geometry view draws an area light's rectangle with its corners
   // where light_shape puts them.
   void the_geometry_view_draws_an_area_lights_rectangle() {

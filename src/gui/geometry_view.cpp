@@ -194,6 +194,11 @@ Vec3 GeometryView::marker_position(const Light& light) const {
   return centre_ - 0.45f * scene_size_ * light.direction.normalized();
 }
 
+std::optional<Vec3> GeometryView::aim_point(const Light& light) const {
+  if (light.type != LightType::spot && light.type != LightType::area) return std::nullopt;
+  return Vec3(light.position + aim_reach(*document_, light) * light.direction.normalized());
+}
+
 float GeometryView::shape_reach(const Light& light) const {
   return light.type == LightType::spot ? aim_reach(*document_, light) : kSunArrow * scene_size_;
 }
@@ -284,6 +289,9 @@ void GeometryView::draw_lights(QPainter& painter, std::vector<Label>& labels) co
     painter.drawEllipse(*p, r, r);
     labels.push_back({*p, QString::fromStdString(light.name)});
   }
+  if (selected_ >= 0 && selected_ < document_->light_count())
+    if (const auto aim = aim_point(document_->light(selected_)))
+      if (const auto q = project(*aim)) draw_aim_handle(painter, *q);
 }
 
 void GeometryView::paintEvent(QPaintEvent*) {
@@ -355,10 +363,30 @@ int GeometryView::light_at(const QPointF& point) const {
   return best;
 }
 
+bool GeometryView::on_aim_handle(const QPointF& point) const {
+  if (selected_ < 0 || selected_ >= document_->light_count()) return false;
+  const auto aim = aim_point(document_->light(selected_));
+  const auto q = aim ? project(*aim) : std::nullopt;
+  return q && std::hypot(q->x() - point.x(), q->y() - point.y()) <= kPickRadius;
+}
+
+Vec3 GeometryView::dragged(const Vec3& start, const QPointF& by) const {
+  // Pixels to metres at the point's depth.
+  const Eye e = eye();
+  const float metres_per_pixel = std::max((start - e.position).dot(e.forward), 0.0f) / e.focal;
+  return start + metres_per_pixel * (float(by.x()) * e.right - float(by.y()) * e.up);
+}
+
 void GeometryView::mousePressEvent(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton || !document_) return;
   setFocus();
   drag_start_ = event->position();
+  if (on_aim_handle(event->position())) {
+    drag_light_ = document_->light(selected_);
+    drag_aim_ = *aim_point(drag_light_);
+    drag_ = Drag::aim;
+    return;
+  }
   const int hit = light_at(event->position());
   if (hit >= 0) {
     emit lightClicked(hit);
@@ -377,17 +405,20 @@ void GeometryView::mouseMoveEvent(QMouseEvent* event) {
   if (drag_ == Drag::orbit) {
     set_orbit(drag_yaw_ - 0.4f * float(d.x()), drag_pitch_ + 0.4f * float(d.y()), distance_);
   } else if (drag_ == Drag::light && selected_ >= 0) {
-    // In the plane through the light facing the view: pixels to metres at its depth.
-    const Eye e = eye();
-    const float metres_per_pixel = std::max((drag_light_.position - e.position).dot(e.forward), 0.0f) / e.focal;
     Light moved = drag_light_;
-    moved.position += metres_per_pixel * (float(d.x()) * e.right - float(d.y()) * e.up);
+    moved.position = dragged(drag_light_.position, d);
     emit lightDragged(selected_, moved);
+  } else if (drag_ == Drag::aim && selected_ >= 0) {
+    const Vec3 aim = dragged(drag_aim_, d) - drag_light_.position;
+    if (aim.norm() == 0.0f) return;
+    Light aimed = drag_light_;
+    aimed.direction = aim.normalized();
+    emit lightDragged(selected_, aimed);
   }
 }
 
 void GeometryView::mouseReleaseEvent(QMouseEvent* event) {
-  if (drag_ == Drag::light && selected_ >= 0 && event->position() != drag_start_)
+  if ((drag_ == Drag::light || drag_ == Drag::aim) && selected_ >= 0 && event->position() != drag_start_)
     emit lightDropped(selected_, drag_light_, document_->light(selected_));
   drag_ = Drag::none;
 }

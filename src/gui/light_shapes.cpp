@@ -96,6 +96,13 @@ QColor light_colour(bool selected, bool enabled) {
   return enabled ? QColor(40, 110, 230) : QColor(240, 200, 30);
 }
 
+void draw_aim_handle(QPainter& painter, const QPointF& at) {
+  constexpr double kHalf = 5.0;  // pixels
+  painter.setPen(QPen(light_colour(true, true), 2.0));
+  painter.setBrush(Qt::NoBrush);
+  painter.drawRect(QRectF(at - QPointF(kHalf, kHalf), QSizeF(2 * kHalf, 2 * kHalf)));
+}
+
 void draw_polylines(QPainter& painter, const std::vector<Polyline>& lines,
                     const std::function<std::optional<QPointF>(const Vec3&)>& project) {
   for (const Polyline& line : lines) {

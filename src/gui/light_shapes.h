@@ -40,6 +40,9 @@ void repaint_on_light_edits(LightingDocument& document, QWidget& view);
 // yellow a switched-off one.
 QColor light_colour(bool selected, bool enabled);
 
+// The selected light's aim handle: a square in the selected colour at `at`.
+void draw_aim_handle(QPainter& painter, const QPointF& at);
+
 // Draws the polylines through `project` (world point to widget point, or
 // nothing behind the eye), leaving out segments with an end not projected.
 void draw_polylines(QPainter& painter, const std::vector<Polyline>& lines,

@@ -109,11 +109,7 @@ void PhotoView::draw_light_shapes(QPainter& painter) const {
     painter.setBrush(colour);
     painter.drawEllipse(*p, kDotRadius, kDotRadius);
   }
-  if (const auto aim = aim_handle()) {
-    painter.setPen(QPen(light_colour(true, true), 2.0));
-    painter.setBrush(Qt::NoBrush);
-    painter.drawRect(QRectF(*aim - QPointF(kDotRadius, kDotRadius), QSizeF(2 * kDotRadius, 2 * kDotRadius)));
-  }
+  if (const auto aim = aim_handle()) draw_aim_handle(painter, *aim);
 }
 
 std::optional<QPointF> PhotoView::position_handle() const {
