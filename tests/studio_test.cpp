@@ -29,6 +29,7 @@
 #include "gui/geometry_view.h"
 #include "gui/light_dialog.h"
 #include "gui/light_list_model.h"
+#include "gui/light_shapes.h"
 #include "gui/main_window.h"
 #include "gui/photo_view.h"
 #include "gui/sky_strip.h"
@@ -89,6 +90,19 @@ void keep_picture(const QString& name, QWidget& widget) {
     fs::create_directories(folder);
     QVERIFY(widget.grab().save(QString::fromLocal8Bit(folder) + "/" + name + ".png"));
   }
+}
+
+// Whether a pixel within one of `at` has about `colour` (antialiased lines
+// blend at their edges).
+bool shows_colour(const QImage& image, QPointF at, const QColor& colour) {
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const QColor c = image.pixelColor(int(std::floor(at.x())) + dx, int(std::floor(at.y())) + dy);
+      if (std::abs(c.red() - colour.red()) + std::abs(c.green() - colour.green()) +
+              std::abs(c.blue() - colour.blue()) < 40)
+        return true;
+    }
+  return false;
 }
 
 // Pixels whose colour differs between two images of one size.
@@ -990,6 +1004,201 @@ class StudioTest : public QObject {
     QVERIFY(spot.sum() < 0.8f * both.sum());
     QVERIFY(spot.z() / spot.x() > both.z() / both.x());
     QCOMPARE(total(exported("again.exr")), both);  // renders are deterministic
+  }
+
+  // The shapes' geometry: a spot's ring at its reach, of radius reach x
+  // tan(angle/2), with four lines from the apex to it; an area light's
+  // corners ±size/2 along its sides; a sun's arrow the way it shines.
+  void light_shapes_have_the_lights_dimensions() {
+    Light spot;
+    spot.type = LightType::spot;
+    spot.position = Vec3(1, 2, 3);
+    spot.direction = Vec3(0, 2, 0);  // not unit: the shapes normalise it
+    spot.spot_angle_deg = 50.0f;
+    const Vec3 eye(5, -4, 6);
+    std::vector<Polyline> lines = light_shape(spot, spot.position, eye, 2.0f);
+    QCOMPARE(lines.size(), size_t(5));  // no radius: no circle
+    const Vec3 centre(1, 4, 3);
+    const float ring = 2.0f * std::tan(radians(25.0f));
+    for (const Vec3& p : lines[0]) {
+      QVERIFY(std::abs((p - centre).norm() - ring) < 1e-5f);
+      QVERIFY(std::abs((p - centre).y()) < 1e-5f);
+    }
+    for (size_t i = 1; i < 5; ++i) {
+      QCOMPARE(lines[i].size(), size_t(2));
+      QVERIFY((lines[i][0] - spot.position).norm() < 1e-6f);
+      QVERIFY(std::abs((lines[i][1] - centre).norm() - ring) < 1e-5f);
+    }
+    spot.radius = 0.25f;
+    lines = light_shape(spot, spot.position, eye, 2.0f);
+    QCOMPARE(lines.size(), size_t(6));
+    for (const Vec3& p : lines[0]) {
+      QVERIFY(std::abs((p - spot.position).norm() - 0.25f) < 1e-5f);
+      QVERIFY(std::abs((p - spot.position).dot((eye - spot.position).normalized())) < 1e-5f);  // faces the eye
+    }
+
+    Light area;
+    area.type = LightType::area;
+    area.position = Vec3(0, 0, 2);
+    area.direction = Vec3(0, 0, -1);
+    area.up = Vec3(0, 1, 0);
+    area.size = Vec2(2.0f, 0.5f);
+    lines = light_shape(area, area.position, eye, 1.0f);
+    QCOMPARE(lines.size(), size_t(3));  // the rectangle, the normal's shaft and its head
+    // w = direction x up = (1, 0, 0), h = w x direction = (0, 1, 0).
+    const std::vector<Vec3> corners = {{-1, -0.25f, 2}, {1, -0.25f, 2}, {1, 0.25f, 2}, {-1, 0.25f, 2}, {-1, -0.25f, 2}};
+    QCOMPARE(lines[0].size(), corners.size());
+    for (size_t i = 0; i < corners.size(); ++i) QVERIFY((lines[0][i] - corners[i]).norm() < 1e-6f);
+    QVERIFY((lines[1][0] - area.position).norm() < 1e-6f);
+    QVERIFY((lines[1][1] - Vec3(0, 0, 1)).norm() < 1e-6f);  // half the longer side along the normal
+
+    Light sun;
+    sun.type = LightType::directional;
+    sun.direction = Vec3(0, 3, -4);
+    lines = light_shape(sun, Vec3(1, 1, 1), eye, 10.0f);
+    QCOMPARE(lines.size(), size_t(2));
+    QVERIFY((lines[0][1] - Vec3(1, 7, -7)).norm() < 1e-5f);
+    QVERIFY((lines[1][1] - lines[0][1]).norm() < 1e-6f);  // the head at the tip
+  }
+
+  // The photo shows the selected spot's cone in the selected colour where
+  // the camera sees its end, and not with the shapes switched off.
+  void the_photo_shows_a_spots_cone_where_the_camera_sees_it() {
+    show_converged_frame();
+    PhotoView& view = window_->photo_view();
+    const Camera& camera = document().session().view().camera();
+    SurfacePoint hit;
+    QVERIFY(document().studio_scene().analysed->rays().intersect(
+        camera.position(), camera.ray_direction(0.5f * float(camera.width()), 0.5f * float(camera.height())), hit));
+    Light spot = document().light(0);
+    spot.type = LightType::spot;
+    spot.radius = 0.0f;
+    spot.spot_angle_deg = 30.0f;
+    spot.position = hit.position + 0.4f * (camera.position() - hit.position);
+    spot.direction = (hit.position - spot.position).normalized();
+    document().set_light(0, spot);
+    window_->select_light(0);
+    const std::vector<Polyline> lines = light_shape(spot, spot.position, camera.position(),
+                                                    aim_reach(document(), spot));
+    const auto end = camera.project(lines[1][1]);  // where a line from the apex meets the ring
+    QVERIFY(end.has_value());
+    const QPointF at = view.widget_position(QPointF(end->x(), end->y()));
+    QVERIFY(view.rect().contains(at.toPoint()));
+    keep_picture("spot_cone", view);
+    QVERIFY(shows_colour(view.grab().toImage(), at, light_colour(true, true)));
+    view.set_shapes_shown(false);
+    QVERIFY(!shows_colour(view.grab().toImage(), at, light_colour(true, true)));
+  }
+
+  // Dragging the selected lamp's dot on the photo moves it across the
+  // surface under the cursor at its height above the surface below it, one
+  // undo step; dragging a spot's aim square aims it at the surface there.
+  void dragging_handles_on_the_photo_moves_and_aims_the_light() {
+    show_converged_frame();
+    PhotoView& view = window_->photo_view();
+    window_->select_light(0);
+    const Light start = document().light(0);
+    const Camera& camera = document().session().view().camera();
+    const RayScene& rays = document().studio_scene().analysed->rays();
+    const Vec3 up = document().scene().camera.spec().up.normalized();
+    const auto surface = [&](QPoint widget) {
+      const auto pixel = view.image_position(widget);
+      SurfacePoint hit;
+      [&] {
+        QVERIFY(pixel.has_value());
+        QVERIFY(rays.intersect(camera.position(), camera.ray_direction(float(pixel->x()), float(pixel->y())), hit));
+      }();
+      return hit.position;
+    };
+    const auto drag = [&](QPoint from, QPoint to) {
+      QTest::mousePress(&view, Qt::LeftButton, {}, from);
+      QMouseEvent move(QEvent::MouseMove, QPointF(to), view.mapToGlobal(QPointF(to)), Qt::NoButton, Qt::LeftButton,
+                       {});
+      QCoreApplication::sendEvent(&view, &move);
+      QTest::mouseRelease(&view, Qt::LeftButton, {}, to);
+    };
+    SurfacePoint below;
+    QVERIFY(rays.intersect(start.position, -up, below));
+    const auto dot = camera.project(start.position);
+    QVERIFY(dot.has_value());
+    const QPoint from = view.widget_position(QPointF(dot->x(), dot->y())).toPoint();
+    const QPoint to = from + QPoint(-80, 60);
+    drag(from, to);
+    const Vec3 expected = surface(to) + below.distance * up;
+    QVERIFY2((document().light(0).position - expected).norm() < 1e-4f,
+             qPrintable(QString("moved %1 m off").arg((document().light(0).position - expected).norm())));
+    QVERIFY((document().light(0).position - start.position).norm() > 0.1f);
+    QCOMPARE(window_->undo_stack().count(), 1);
+    QCOMPARE(window_->undo_stack().undoText(), QStringLiteral("Drag light"));
+    window_->undo_stack().undo();
+    expect_same_light(document().light(0), start);
+
+    Light spot = start;
+    spot.type = LightType::spot;
+    spot.direction = -up;
+    document().set_light(0, spot);
+    const auto aim = camera.project(spot.position + aim_reach(document(), spot) * spot.direction);
+    QVERIFY(aim.has_value());
+    const QPoint aim_from = view.widget_position(QPointF(aim->x(), aim->y())).toPoint();
+    const QPoint aim_to = aim_from + QPoint(70, 30);
+    drag(aim_from, aim_to);
+    const Vec3 towards = (surface(aim_to) - spot.position).normalized();
+    QVERIFY((document().light(0).direction - towards).norm() < 1e-4f);
+    QVERIFY((document().light(0).position - spot.position).norm() == 0.0f);  // aimed, not moved
+  }
+
+  // Dragging the selected spot's aim square in the geometry view aims it
+  // through where the mouse is let go, without moving it; one undo step.
+  void dragging_the_aim_square_in_the_geometry_view_aims_the_spot() {
+    Light spot = document().light(0);
+    spot.type = LightType::spot;
+    spot.direction = Vec3(0.3f, 0.2f, -1.0f).normalized();
+    document().set_light(0, spot);
+    window_->select_light(0);
+    GeometryView& view = window_->geometry_view();
+    const auto aim = view.aim_point(spot);
+    QVERIFY(aim.has_value());
+    const auto square = view.project(*aim);
+    QVERIFY(square.has_value());
+    const QPoint by(25, -15);
+    drag_in_geometry_view(square->toPoint(), by);
+    const Light aimed = document().light(0);
+    QVERIFY((aimed.position - spot.position).norm() == 0.0f);
+    QVERIFY(aimed.direction.dot(spot.direction) < 0.999f);
+    // The new aim, seen from the view, runs from the light through the release point.
+    const auto apex = view.project(aimed.position);
+    const auto along = view.project(aimed.position + 1e-3f * aimed.direction);
+    QVERIFY(apex && along);
+    const QPointF seen = *along - *apex, wanted = QPointF(square->toPoint() + by) - *apex;
+    const double cross = (seen.x() * wanted.y() - seen.y() * wanted.x()) / std::hypot(seen.x(), seen.y());
+    QVERIFY2(std::abs(cross) < 1.0, qPrintable(QString("%1 px off").arg(cross)));  // within a pixel of the line
+    QVERIFY(seen.x() * wanted.x() + seen.y() * wanted.y() > 0.0);
+    QCOMPARE(window_->undo_stack().undoText(), QStringLiteral("Drag light"));
+    window_->undo_stack().undo();
+    expect_same_light(document().light(0), spot);
+  }
+
+  // The geometry view draws an area light's rectangle with its corners
+  // where light_shape puts them.
+  void the_geometry_view_draws_an_area_lights_rectangle() {
+    Light area = document().light(0);
+    area.type = LightType::area;
+    area.direction = Vec3(0, 0, -1);
+    area.up = Vec3(0, 1, 0);
+    area.size = Vec2(1.6f, 1.0f);
+    document().set_light(0, area);
+    window_->select_light(0);
+    GeometryView& view = window_->geometry_view();
+    view.frame_selected();
+    keep_picture("area_rectangle", view);
+    const QImage image = view.grab().toImage();
+    const Vec3 eye = view.eye_position();
+    const std::vector<Polyline> lines = light_shape(area, area.position, eye, 1.0f);
+    for (size_t i = 0; i < 4; ++i) {
+      const auto corner = view.project(lines[0][i]);
+      QVERIFY(corner.has_value());
+      QVERIFY2(shows_colour(image, *corner, light_colour(true, true)), qPrintable(QString::number(i)));
+    }
   }
 
   void export_writes_the_full_size_image() {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/analysed_scene.h"
+#include "gui/light_shapes.h"
 #include "gui/studio_scene.h"
 #include "render/gbuffer.h"
 
@@ -20,6 +21,7 @@ namespace {
 constexpr float kFieldOfViewDeg = 45.0f;
 constexpr float kPickRadius = 10.0f;  // pixels
 constexpr float kLargeStep = 10.0f;   // Shift
+constexpr float kSunArrow = 0.3f;     // of the scene's size
 
 // 1, 2 or 5 times a power of ten, the nearest at or below `x`; a negative
 // power divides, so that 0.05 is the float nearest 0.05.
@@ -37,11 +39,6 @@ Vec3 any_perpendicular(const Vec3& n) {
   Vec3 a, b;
   orthonormal_basis(n, a, b);
   return a;
-}
-
-QColor dot_colour(bool selected, bool enabled) {
-  if (selected) return QColor(220, 40, 40);
-  return enabled ? QColor(40, 110, 230) : QColor(240, 200, 30);
 }
 
 // What the photo's camera sees, per axis between the 10th and 90th
@@ -111,11 +108,7 @@ void GeometryView::set_document(LightingDocument* document) {
     seen_centre_ = seen.isEmpty() ? scene.camera.spec().look_at : Vec3(seen.center());
     scene_size_ = seen.isEmpty() ? 1.0f : std::max(seen.diagonal().norm(), 1e-3f);
     move_step_ = nice_step(scene_size_ / 100.0f);
-    for (auto signal : {&LightingDocument::lightChanged, &LightingDocument::lightInserted,
-                        &LightingDocument::lightRemoved})
-      connect(document_, signal, this, qOverload<>(&QWidget::update));
-    connect(document_, &LightingDocument::rigReset, this, qOverload<>(&QWidget::update));
-    connect(document_, &LightingDocument::soloChanged, this, qOverload<>(&QWidget::update));
+    repaint_on_light_edits(*document_, *this);
     connect(document_, &QObject::destroyed, this, [this] { set_document(nullptr); });
   }
   reset_orbit();
@@ -201,6 +194,15 @@ Vec3 GeometryView::marker_position(const Light& light) const {
   return centre_ - 0.45f * scene_size_ * light.direction.normalized();
 }
 
+std::optional<Vec3> GeometryView::aim_point(const Light& light) const {
+  if (light.type != LightType::spot && light.type != LightType::area) return std::nullopt;
+  return Vec3(light.position + aim_reach(*document_, light) * light.direction.normalized());
+}
+
+float GeometryView::shape_reach(const Light& light) const {
+  return light.type == LightType::spot ? aim_reach(*document_, light) : kSunArrow * scene_size_;
+}
+
 void GeometryView::geometry_changed() {
   mesh_image_ = QImage();
   update();
@@ -276,21 +278,20 @@ void GeometryView::draw_lights(QPainter& painter, std::vector<Label>& labels) co
     const Vec3 at = marker_position(light);
     const auto p = project(at);
     if (!p) continue;
-    const QColor colour = dot_colour(i == selected_, document_->shown_light(i).enabled);
-    if (light.type != LightType::point) {
-      // Which way it shines: a short line towards where the light goes.
-      const Vec3 towards = at + 0.08f * scene_size_ * light.direction.normalized();
-      if (const auto q = project(towards)) {
-        painter.setPen(QPen(colour, 2.0));
-        painter.drawLine(*p, *q);
-      }
-    }
+    const QColor colour = light_colour(i == selected_, document_->shown_light(i).enabled);
+    painter.setPen(QPen(colour, i == selected_ ? 2.0 : 1.4));
+    painter.setBrush(Qt::NoBrush);
+    draw_polylines(painter, light_shape(light, at, eye_position(), shape_reach(light)),
+                   [this](const Vec3& q) { return project(q); });
     painter.setPen(QPen(QColor(20, 20, 20), 1.5));
     painter.setBrush(colour);
     const double r = i == selected_ ? 7.5 : 6.0;
     painter.drawEllipse(*p, r, r);
     labels.push_back({*p, QString::fromStdString(light.name)});
   }
+  if (selected_ >= 0 && selected_ < document_->light_count())
+    if (const auto aim = aim_point(document_->light(selected_)))
+      if (const auto q = project(*aim)) draw_aim_handle(painter, *q);
 }
 
 void GeometryView::paintEvent(QPaintEvent*) {
@@ -362,10 +363,30 @@ int GeometryView::light_at(const QPointF& point) const {
   return best;
 }
 
+bool GeometryView::on_aim_handle(const QPointF& point) const {
+  if (selected_ < 0 || selected_ >= document_->light_count()) return false;
+  const auto aim = aim_point(document_->light(selected_));
+  const auto q = aim ? project(*aim) : std::nullopt;
+  return q && std::hypot(q->x() - point.x(), q->y() - point.y()) <= kPickRadius;
+}
+
+Vec3 GeometryView::dragged(const Vec3& start, const QPointF& by) const {
+  // Pixels to metres at the point's depth.
+  const Eye e = eye();
+  const float metres_per_pixel = std::max((start - e.position).dot(e.forward), 0.0f) / e.focal;
+  return start + metres_per_pixel * (float(by.x()) * e.right - float(by.y()) * e.up);
+}
+
 void GeometryView::mousePressEvent(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton || !document_) return;
   setFocus();
   drag_start_ = event->position();
+  if (on_aim_handle(event->position())) {
+    drag_light_ = document_->light(selected_);
+    drag_aim_ = *aim_point(drag_light_);
+    drag_ = Drag::aim;
+    return;
+  }
   const int hit = light_at(event->position());
   if (hit >= 0) {
     emit lightClicked(hit);
@@ -384,17 +405,20 @@ void GeometryView::mouseMoveEvent(QMouseEvent* event) {
   if (drag_ == Drag::orbit) {
     set_orbit(drag_yaw_ - 0.4f * float(d.x()), drag_pitch_ + 0.4f * float(d.y()), distance_);
   } else if (drag_ == Drag::light && selected_ >= 0) {
-    // In the plane through the light facing the view: pixels to metres at its depth.
-    const Eye e = eye();
-    const float metres_per_pixel = std::max((drag_light_.position - e.position).dot(e.forward), 0.0f) / e.focal;
     Light moved = drag_light_;
-    moved.position += metres_per_pixel * (float(d.x()) * e.right - float(d.y()) * e.up);
+    moved.position = dragged(drag_light_.position, d);
     emit lightDragged(selected_, moved);
+  } else if (drag_ == Drag::aim && selected_ >= 0) {
+    const Vec3 aim = dragged(drag_aim_, d) - drag_light_.position;
+    if (aim.norm() == 0.0f) return;
+    Light aimed = drag_light_;
+    aimed.direction = aim.normalized();
+    emit lightDragged(selected_, aimed);
   }
 }
 
 void GeometryView::mouseReleaseEvent(QMouseEvent* event) {
-  if (drag_ == Drag::light && selected_ >= 0 && event->position() != drag_start_)
+  if ((drag_ == Drag::light || drag_ == Drag::aim) && selected_ >= 0 && event->position() != drag_start_)
     emit lightDropped(selected_, drag_light_, document_->light(selected_));
   drag_ = Drag::none;
 }

@@ -1,9 +1,11 @@
 // GeometryView (thesis 6.2.1): the scene's mesh seen from an orbiting
 // viewpoint, with the photo's camera and every light drawn as a dot — red
-// the selected one, blue a shown light, yellow a switched-off one. Drawn
+// the selected one, blue a shown light, yellow a switched-off one — and its
+// shape (light_shapes.h). Drawn
 // with QPainter (flat-shaded triangles, back to front), so it needs no
 // OpenGL. Mouse: click a dot to select it, drag it to move the light in the
-// plane facing the view, drag elsewhere to orbit, wheel to zoom. Keys
+// plane facing the view, drag the selected light's aim square to aim it,
+// drag elsewhere to orbit, wheel to zoom. Keys
 // (thesis 6.3): arrows move the selected light up/down and sideways,
 // Home/End forwards/backwards in this view's frame, Shift ten times
 // further; Delete deletes. The view only asks (signals); the main window
@@ -56,10 +58,15 @@ class GeometryView : public QWidget {
   // The move of a key press (arrows, Home, End, with Shift), if it is one.
   std::optional<Vec3> key_move(int key, Qt::KeyboardModifiers modifiers) const;
 
+  Vec3 eye_position() const { return eye().position; }  // the orbit's viewpoint
   // Where a world point appears in the widget, if in front of the eye.
   std::optional<QPointF> project(const Vec3& p) const;
   // Where light `index`'s dot is drawn (a sun's: out along where it shines from).
   Vec3 marker_position(const Light& light) const;
+  // A spot's or area light's aim handle (a square, drawn for the selected
+  // light): where its aim meets the first surface; dragged, it re-aims the
+  // light through the point dragged to.
+  std::optional<Vec3> aim_point(const Light& light) const;
 
   QSize sizeHint() const override { return {420, 320}; }
   QSize minimumSizeHint() const override { return {200, 150}; }
@@ -96,9 +103,13 @@ class GeometryView : public QWidget {
   };
   void draw_camera(QPainter& painter, std::vector<Label>& labels) const;
   void draw_lights(QPainter& painter, std::vector<Label>& labels) const;
+  float shape_reach(const Light& light) const;  // a spot's cone's length, a sun's arrow's
   // Each label on a dark box beside its marker (place_labels).
   void draw_labels(QPainter& painter, const std::vector<Label>& labels) const;
   int light_at(const QPointF& point) const;
+  bool on_aim_handle(const QPointF& point) const;  // the selected light's
+  // A point dragged by `by` pixels in the plane through it facing the view.
+  Vec3 dragged(const Vec3& start, const QPointF& by) const;
   void geometry_changed();
 
   LightingDocument* document_ = nullptr;
@@ -110,10 +121,11 @@ class GeometryView : public QWidget {
   Vec3 seen_centre_ = Vec3::Zero();
   float yaw_deg_ = 0.0f, pitch_deg_ = 35.0f, distance_ = 1.0f;
   QImage mesh_image_;  // the shaded mesh for the current orbit and size
-  enum class Drag { none, orbit, light } drag_ = Drag::none;
+  enum class Drag { none, orbit, light, aim } drag_ = Drag::none;
   QPointF drag_start_;
   float drag_yaw_ = 0.0f, drag_pitch_ = 0.0f;
   Light drag_light_;
+  Vec3 drag_aim_ = Vec3::Zero();  // the aim point where the drag started
 };
 
 }  // namespace relight::gui

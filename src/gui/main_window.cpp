@@ -100,16 +100,21 @@ MainWindow::~MainWindow() {
   task_.wait();
   undo_.clear();
   lights_->set_document(nullptr);
+  photo_view().set_document(nullptr);
 }
 
 void MainWindow::connect_panels() {
   GeometryView* geometry = &lights_->geometry_view();
   connect(geometry, &GeometryView::lightClicked, this, &MainWindow::select_light);
-  connect(geometry, &GeometryView::lightDragged, this,
-          [this](int index, const Light& light) { document_->set_light(index, light); });
-  connect(geometry, &GeometryView::lightDropped, this, [this](int index, const Light& before, const Light& after) {
+  // A drag in either view edits the light live and is one undo step when let go.
+  const auto dragged = [this](int index, const Light& light) { document_->set_light(index, light); };
+  const auto dropped = [this](int index, const Light& before, const Light& after) {
     undo_.push(new EditLightCommand(*document_, index, before, after, tr("Drag light")));
-  });
+  };
+  connect(geometry, &GeometryView::lightDragged, this, dragged);
+  connect(geometry, &GeometryView::lightDropped, this, dropped);
+  connect(&photo_view(), &PhotoView::lightDragged, this, dragged);
+  connect(&photo_view(), &PhotoView::lightDropped, this, dropped);
   connect(geometry, &GeometryView::moveRequested, this, &MainWindow::move_selected_light);
   connect(geometry, &GeometryView::deleteRequested, this, [this] {
     if (selected_ >= 0) delete_light(selected_);
@@ -251,6 +256,11 @@ void MainWindow::make_menus() {
     action->setShortcutContext(Qt::WidgetShortcut);
     geometry.addAction(action);
   }
+  view->addSeparator();
+  QAction* shapes = view->addAction(tr("Show &Light Shapes on the Photo"));
+  shapes->setCheckable(true);
+  shapes->setChecked(photo_view().shapes_shown());
+  connect(shapes, &QAction::toggled, &photo_view(), &PhotoView::set_shapes_shown);
 }
 
 void MainWindow::run_task(const QString& label, BackgroundTask::Work work, std::function<void(const QString&)> done) {
@@ -302,6 +312,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   choose_view_size(scene->analysed->scene().photo, options_.max_view_width, session);
   undo_.clear();
   lights_->set_document(nullptr);
+  photo_view().set_document(nullptr);
   document_.reset();
   scene_ = std::move(scene);
   document_ = std::make_unique<LightingDocument>(scene_, rig, session);
@@ -309,6 +320,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   rig_path_ = loaded_rig_path;
 
   lights_->set_document(document_.get());
+  photo_view().set_document(document_.get());
   connect(document_.get(), &LightingDocument::lightChanged, this, [this](int index) {
     if (index == selected_) lights_->show_details(index);
   });
@@ -568,6 +580,7 @@ void MainWindow::select_light(int index) {
   if (!document_ || index >= document_->light_count()) index = -1;
   selected_ = index;
   lights_->show_selection(index);
+  photo_view().set_selected(index);
   update_actions();
 }
 

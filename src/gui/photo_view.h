@@ -2,7 +2,12 @@
 // before/after split against the original photo (left of the split: the
 // photo as taken). A click on the picture reports the pixel and the keys
 // held, for selecting the light there or placing one in front of what was
-// clicked.
+// clicked. Over the picture, each light's shape (light_shapes.h) projected
+// with the re-lit view's camera, coloured as in the geometry view. The
+// selected light's dot is a handle: dragged, the light moves across the
+// surface under the cursor, keeping its height above the surface below it;
+// a spot's or area light's aim (the end of its cone, a square) is another:
+// dragged, it aims the light at the surface under the cursor.
 #pragma once
 
 #include <QImage>
@@ -11,8 +16,11 @@
 #include <optional>
 
 #include "core/image.h"
+#include "scene/light.h"
 
 namespace relight::gui {
+
+class LightingDocument;
 
 class PhotoView : public QWidget {
   Q_OBJECT
@@ -28,6 +36,14 @@ class PhotoView : public QWidget {
   // Share of the width, from the left, that shows the original photo (0..1).
   void set_split(double share);
   double split() const { return split_; }
+  // The lights whose shapes are drawn over the picture (none: no overlay).
+  void set_document(LightingDocument* document);
+  void set_selected(int index);
+  void set_shapes_shown(bool shown);
+  bool shapes_shown() const { return shapes_shown_; }
+  // Where a sun's arrow starts: a point in front of the camera seen near
+  // the picture's top-left corner, in world space.
+  Vec3 sun_arrow_origin() const;
 
   // What is shown, at the re-lit image's size (empty before the first frame).
   const QImage& displayed_image() const { return displayed_; }
@@ -39,21 +55,42 @@ class PhotoView : public QWidget {
   QSize sizeHint() const override { return {800, 600}; }
 
  signals:
-  // A click on the picture, in the re-lit image's pixels (continuous).
+  // A click on the picture (not on a handle), in the re-lit image's pixels (continuous).
   void photoClicked(const QPointF& position, Qt::KeyboardModifiers modifiers);
+  // While a handle is dragged: the light as it now is; at the release, before and after.
+  void lightDragged(int index, const relight::Light& light);
+  void lightDropped(int index, const relight::Light& before, const relight::Light& after);
 
  protected:
   void paintEvent(QPaintEvent* event) override;
   void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
 
  private:
   QRectF picture_rect() const;  // where the image is drawn: fitted, centred
   void compose();
+  void draw_light_shapes(QPainter& painter) const;
+  enum class Handle { none, position, aim };
+  // The selected light's handle at a widget point, if any, and where they are.
+  Handle handle_at(const QPointF& widget_point) const;
+  std::optional<QPointF> position_handle() const;
+  std::optional<QPointF> aim_handle() const;
+  std::optional<QPointF> shown(const Vec3& p) const;  // a world point's widget point
+  std::optional<Vec3> surface_at(const QPointF& widget_point) const;
+  Vec3 world_up() const;
 
   std::shared_ptr<const Image> photo_, relit_;
   QImage photo_image_, relit_image_, displayed_;
   float exposure_ = 0.0f;
   double split_ = 0.0;
+  LightingDocument* document_ = nullptr;
+  int selected_ = -1;
+  bool shapes_shown_ = true;
+  Handle drag_ = Handle::none;
+  Light drag_light_;
+  float drag_height_ = 0.0f;  // the dragged light's height above the surface below it
+  bool dragged_ = false;
 };
 
 }  // namespace relight::gui
