@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 #include <string_view>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -260,6 +261,7 @@ TriangleMesh read_with_assimp(const fs::path& path) {
 
   const std::vector<PlacedMesh> placed = placed_meshes(name, *ai);
   TriangleMesh mesh;
+  std::unordered_map<std::string, uint32_t> object_index;  // a scene may have thousands of objects
   bool all_have_normals = true;
   for (const PlacedMesh& p : placed) {
     const aiMesh* am = ai->mMeshes[p.mesh];
@@ -286,9 +288,8 @@ TriangleMesh read_with_assimp(const fs::path& path) {
         mesh.normals.push_back(is_finite(nn) && nn.squaredNorm() > 0 ? nn.normalized() : Vec3::Zero());
       }
     }
-    const auto object = std::find(mesh.objects.begin(), mesh.objects.end(), p.object);
-    const uint32_t object_index = uint32_t(object - mesh.objects.begin());
-    if (object == mesh.objects.end()) mesh.objects.push_back(p.object);
+    const auto [object, added] = object_index.try_emplace(p.object, uint32_t(mesh.objects.size()));
+    if (added) mesh.objects.push_back(p.object);
     for (unsigned f = 0; f < am->mNumFaces; ++f) {
       const aiFace& face = am->mFaces[f];
       if (face.mNumIndices != 3) continue;
@@ -297,7 +298,7 @@ TriangleMesh read_with_assimp(const fs::path& path) {
           throw InputError(name, fmt::format("mesh {} face {}", m, f),
                            fmt::format("refers to vertex {} of {}", face.mIndices[k], am->mNumVertices));
       mesh.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
-      mesh.triangle_objects.push_back(object_index);
+      mesh.triangle_objects.push_back(object->second);
     }
   }
   return mesh;
