@@ -269,6 +269,42 @@ TEST(AreaLight, CornerFactorFormulaIsRight) {
   EXPECT_NEAR(corner_factor(1e6, 1e6, 1.0), 0.25, 1e-5);
 }
 
+// The solid angle of a rectangle seen from a point: on axis, a square of
+// side a at distance d covers 4 asin(a^2 / (a^2 + 4 d^2)); off axis and
+// tilted, against a midpoint quadrature of cos / r^2 over its area. Far
+// away it tends to w h cos / d^2.
+TEST(AreaLight, SolidAngleIsExactNearAndTendsToTheSmallLightLimitFar) {
+  Light l;
+  l.type = LightType::area;
+  l.position = Vec3(0, 0, 1);
+  l.direction = Vec3(0, 0, -1);
+  l.up = Vec3(0, 1, 0);
+  l.size = Vec2(2, 2);
+  EXPECT_NEAR(area_light_solid_angle(l, Vec3::Zero()), 4.0 * std::asin(4.0 / 8.0), 1e-5);
+
+  l.size = Vec2(0.8f, 0.6f);
+  l.position = Vec3(0.3f, -0.2f, 1.1f);
+  l.direction = Vec3(0.3f, 0.2f, -1.0f).normalized();
+  const Vec3 from(0.1f, 0.2f, 0.0f);
+  const AreaLightSides sides = area_light_sides(l);
+  const int n = 400;
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Vec3 q = l.position + ((i + 0.5f) / n - 0.5f) * l.size.x() * sides.w +
+                     ((j + 0.5f) / n - 0.5f) * l.size.y() * sides.h;
+      const Vec3 to = q - from;
+      sum += std::abs(to.normalized().dot(l.direction)) / to.squaredNorm();
+    }
+  sum *= double(l.size.x()) * l.size.y() / (double(n) * n);
+  EXPECT_NEAR(area_light_solid_angle(l, from), sum, 1e-4 * sum);
+
+  const Vec3 far(0.3f, -0.2f, -99.0f);  // 100 m below
+  const Vec3 to_far = far - l.position;
+  const double limit = l.size.x() * l.size.y() * std::abs(to_far.normalized().dot(l.direction)) / to_far.squaredNorm();
+  EXPECT_NEAR(area_light_solid_angle(l, far), limit, 1e-3 * limit);
+}
+
 TEST(AreaLight, FacingOnAxisMatchesRectangleClosedForm) {
   // A w x h rectangle at height d, centred above the point, emitting down.
   // Uniform Lambertian radiance L = P/(4 w h) (FORMAT.md). The irradiance is

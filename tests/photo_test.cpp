@@ -354,23 +354,27 @@ TEST(LdrPhoto, ClippedPixelsTakeTheirSurfacesAlbedo) {
 }
 
 // A public scene's photo as an 8-bit sRGB PNG with 1 % of it clipped gives,
-// after one global scale, the albedo the HDR photo gives, within 2 dB
+// after one global scale, the albedo the HDR photo gives, within 2 dB; the
+// probe fixes the PNG's exposure, so the albedo itself is within 2 dB too
 // (docs/benchmarks.md has the figures).
-TEST(LdrPhoto, OnePercentClippedCostsUnder2dB) {
-  const auto folder = test::reference_scenes_folder() / "outdoor";
+class LdrPublicScene : public testing::TestWithParam<const char*> {};
+
+TEST_P(LdrPublicScene, OnePercentClippedCostsUnder2dB) {
+  const auto folder = test::reference_scenes_folder() / GetParam();
   if (!std::filesystem::exists(folder / "scene.json")) GTEST_SKIP() << folder << " absent";
   int w, h;
   const std::vector<float> mask = read_scalar_image(folder / "mask.exr", w, h);
   const Image truth = read_image(folder / "albedo_gt.exr");
-  // Albedo PSNR on the mask (values clipped to [0,1]) after the one global
-  // scale (least squares) an unknown exposure leaves open.
-  const auto scaled_psnr = [&](Image albedo) {
+  // Albedo PSNR on the mask (values clipped to [0,1]), as it is and after
+  // the one global scale (least squares) an unknown exposure leaves open.
+  const auto albedo_psnr = [&](Image albedo, bool scaled) {
     double cross = 0.0, square = 0.0;
     for (size_t p = 0; p < albedo.size(); ++p) {
       cross += mask[p] * albedo.pixels[p].dot(truth.pixels[p]);
       square += mask[p] * albedo.pixels[p].squaredNorm();
     }
-    for (Vec3& p : albedo.pixels) p *= float(cross / square);
+    if (scaled)
+      for (Vec3& p : albedo.pixels) p *= float(cross / square);
     return psnr(clip01(albedo), clip01(truth), &mask);
   };
   Scene scene = load_scene(folder / "scene.json");
@@ -379,16 +383,21 @@ TEST(LdrPhoto, OnePercentClippedCostsUnder2dB) {
   options.strategy = default_strategy(scene);
   const RayScene rays(scene.mesh);
   const GBuffer gbuffer = scene_gbuffer(scene, rays, options);
-  const double hdr = scaled_psnr(analyze(scene, rays, gbuffer, options, Progress::silent()).albedo.albedo_coverage);
-  test::SceneFolder f("ldr_clipped_photo");
+  const Image hdr = analyze(scene, rays, gbuffer, options, Progress::silent()).albedo.albedo_coverage;
+  test::SceneFolder f(std::string("ldr_clipped_photo_") + GetParam());
   write_png(f / "photo.png", exposed_to_clip(scene.photo, 0.01));
   scene.photo = read_image(f / "photo.png", &scene.photo_clipped);
   const double clipped = double(std::count(scene.photo_clipped.begin(), scene.photo_clipped.end(), 1));
   EXPECT_NEAR(clipped / double(scene.photo.size()), 0.01, 0.002);
-  const double ldr = scaled_psnr(analyze(scene, rays, gbuffer, options, Progress::silent()).albedo.albedo_coverage);
-  std::printf("[ figures  ] outdoor albedo after one scale: HDR %.2f dB, 8-bit PNG 1 %% clipped %.2f dB\n", hdr, ldr);
-  EXPECT_GT(ldr, hdr - 2.0);
+  const Image ldr = analyze(scene, rays, gbuffer, options, Progress::silent()).albedo.albedo_coverage;
+  std::printf(
+      "[ figures  ] %s albedo: HDR %.2f dB, 8-bit PNG 1 %% clipped %.2f dB; after one scale %.2f and %.2f dB\n",
+      GetParam(), albedo_psnr(hdr, false), albedo_psnr(ldr, false), albedo_psnr(hdr, true), albedo_psnr(ldr, true));
+  EXPECT_GT(albedo_psnr(ldr, true), albedo_psnr(hdr, true) - 2.0);
+  EXPECT_GT(albedo_psnr(ldr, false), albedo_psnr(hdr, false) - 2.0);
 }
+
+INSTANTIATE_TEST_SUITE_P(PublicScenes, LdrPublicScene, testing::Values("outdoor", "bookcase", "studio"));
 
 // `radiance` (at most 1) encoded by the tone curve encoded = linear^(1/2.2),
 // rounded to 8 bits and written as a PNG.
@@ -533,6 +542,85 @@ Vec3 mean_albedo_on_the_geometry(const std::filesystem::path& analysis, int at_l
     if (mask[p] >= 0.999f) sum += albedo.pixels[p], ++n;
   EXPECT_GT(n, at_least) << analysis;
   return n ? Vec3(sum / float(n)) : Vec3::Zero();
+}
+
+// The radiance of the test scene's surfaces for the probe-exposure test:
+// greys from 0.1 to 0.7 in waves across the floor and up the box.
+Vec3 wavy_radiance(const Vec3& p) {
+  return Vec3::Constant(0.4f + 0.3f * std::sin(2.0f * p.x() + p.z()) * std::cos(1.5f * p.y()));
+}
+
+// A photo (64 x 48) and an equirect probe (64 x 32) of `f`'s scene that both
+// show wavy_radiance on its surfaces (the photo times `exposure`), and
+// 1 where they see past the geometry.
+void write_wavy_photo_and_probe(SceneFolder& f, const Vec3& exposure) {
+  f.add_probe("equirect", 64, 32);
+  f.scene["probes"][0]["position"] = {1.5, -1.5, 0.5};  // beside the box, above the floor
+  f.write_json();
+  const Scene scene = load_scene(f / "scene.json");  // the camera and probe frames, from a scene with a placeholder photo
+  const Camera camera(scene.camera.spec(), 64, 48);
+  const RayScene rays(scene.mesh);
+  const auto radiance = [&](const Vec3& origin, const Vec3& direction) {
+    SurfacePoint hit;
+    return rays.intersect(origin, direction, hit) ? wavy_radiance(hit.position) : Vec3(Vec3::Ones());
+  };
+  Image photo(64, 48);
+  for (int y = 0; y < photo.height; ++y)
+    for (int x = 0; x < photo.width; ++x)
+      photo.at(x, y) = radiance(camera.position(), camera.ray_direction(x + 0.5f, y + 0.5f)).cwiseProduct(exposure);
+  f.replace_photo(photo);
+  const Probe& given = scene.probes[0];
+  const ProbeFrame frame(given.forward, given.up);
+  Image probe(64, 32);
+  for (int y = 0; y < probe.height; ++y)
+    for (int x = 0; x < probe.width; ++x)
+      probe.at(x, y) = radiance(given.position, *probe_uv_to_direction(ProbeMapping::equirect, frame,
+                                                                       Vec2((x + 0.5f) / 64.0f, (y + 0.5f) / 32.0f)));
+  write_exr(f / "probe.exr", probe);
+}
+
+// A photo at another exposure than its probe is divided by the ratio: the
+// albedo is the one the photo in the probe's units gives, analysis.json
+// records the ratio, and the scene's own lights render the photo back in
+// those units. A probe that does not show the photo's surfaces (uniform, as
+// a Blender world's HDRI shows the floor) fixes no exposure.
+TEST(AnalyzeWithProbe, APhotoAtAnotherExposureIsBroughtToTheProbesUnits) {
+  SceneFolder f("analyze_photo_exposure");
+  const auto analyze_photo = [&](const Vec3& exposure, const std::string& folder) {
+    write_wavy_photo_and_probe(f, exposure);
+    const auto r = run_cli({"analyze", (f / "scene.json").string(), "-o", (f / folder).string(), "--spp", "2", "-v"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    return r.err;
+  };
+  const std::string in_probe_units = analyze_photo(Vec3::Ones(), "same");
+  EXPECT_EQ(in_probe_units.find("times as bright as the probe"), std::string::npos) << in_probe_units;
+  const Vec3 exposure(0.6f, 0.5f, 0.4f);
+  const std::string other = analyze_photo(exposure, "other");
+  EXPECT_NE(other.find("the photo shows the surfaces 0.51 times as bright as the probe"), std::string::npos) << other;
+
+  const json recorded = json::parse(test::read_text(f / "other" / "analysis.json"));
+  ASSERT_TRUE(recorded.contains("photo_exposure")) << recorded.dump();
+  EXPECT_FALSE(json::parse(test::read_text(f / "same" / "analysis.json")).contains("photo_exposure"));
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(recorded["photo_exposure"][c].get<double>(), exposure[c], 1e-3) << c;
+  const Vec3 same = mean_albedo_on_the_geometry(f / "same", 100), divided = mean_albedo_on_the_geometry(f / "other", 100);
+  EXPECT_LT((divided - same).cwiseAbs().maxCoeff(), 0.01f * same.maxCoeff()) << divided.transpose() << " vs "
+                                                                             << same.transpose();
+
+  ASSERT_EQ(run_cli({"rig", (f / "scene.json").string(), "-o", (f / "own.json").string()}).status, 0);
+  const auto r = run_cli({"render", (f / "scene.json").string(), "--rig", (f / "own.json").string(), "--analysis",
+                          (f / "other").string(), "-o", (f / "own.exr").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Image back = read_image(f / "own.exr"), photo_in_probe_units = read_image(f / "photo.exr");
+  double error = 0.0;
+  for (size_t p = 0; p < back.size(); ++p)
+    error += (back.pixels[p] - photo_in_probe_units.pixels[p].cwiseQuotient(exposure)).cwiseAbs().maxCoeff();
+  EXPECT_LT(error / double(back.size()), 0.01);
+
+  write_exr(f / "probe.exr", Image(64, 32, Vec3(0.5f, 0.5f, 0.5f)));
+  const auto uniform = run_cli({"analyze", (f / "scene.json").string(), "-o", (f / "uniform").string(), "--spp", "2", "-v"});
+  EXPECT_EQ(uniform.err.find("times as bright as the probe"), std::string::npos) << uniform.err;
+  EXPECT_NE(uniform.err.find("no probe shows enough of the photo's surfaces as the photo does"), std::string::npos)
+      << uniform.err;
 }
 
 // A grey card (here: the whole 8 x 6 photo, of albedo [0.5, 0.4, 0.3]) fixes

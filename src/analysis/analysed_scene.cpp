@@ -12,6 +12,9 @@ AnalysedScene::AnalysedScene(Scene scene, const AnalysisOptions& gbuffer_options
 
 void AnalysedScene::set_analysis(Analysis analysis) {
   analysis_ = std::move(analysis);
+  // The analysis's units: the photo shows through where no geometry covers it.
+  if (analysis_.photo_exposure != Vec3::Ones())
+    for (Vec3& p : scene_.photo.pixels) p = p.cwiseQuotient(analysis_.photo_exposure);
   environment_ = strategy_environment(scene_, *rays_, analysis_.options.strategy);
 }
 

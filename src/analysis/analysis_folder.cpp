@@ -158,6 +158,8 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   j["width"] = w;
   j["height"] = h;
   j["unseen_albedo"] = {a.albedo.mean.x(), a.albedo.mean.y(), a.albedo.mean.z()};
+  if (a.photo_exposure != Vec3::Ones())
+    j["photo_exposure"] = {a.photo_exposure.x(), a.photo_exposure.y(), a.photo_exposure.z()};
   j["filled_pixels"] = a.albedo.filled;
   nlohmann::json triangles = nlohmann::json::array();
   for (const TriangleAlbedo& t : a.albedo.unseen_triangles)
@@ -180,6 +182,11 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
   a.iterations = int(r.unsigned_integer(r.required(j, "", "iterations"), "/iterations", INT32_MAX));
   if (const nlohmann::json* residual = r.optional(j, "residual")) a.residual = r.number(*residual, "/residual", 0.0f);
   a.albedo.mean = r.vec3(r.required(j, "", "unseen_albedo"), "/unseen_albedo");
+  if (const nlohmann::json* e = r.optional(j, "photo_exposure")) {
+    a.photo_exposure = r.vec3(*e, "/photo_exposure");
+    if (!(a.photo_exposure.minCoeff() > 0.0f) || !a.photo_exposure.allFinite())
+      r.fail("/photo_exposure", "expected three positive numbers");
+  }
   if (const nlohmann::json* triangles = r.optional(j, "unseen_triangles")) {
     if (!triangles->is_array()) r.fail("/unseen_triangles", "expected an array");
     for (size_t k = 0; k < triangles->size(); ++k) {

@@ -4,6 +4,7 @@
 
 #include "analysis/illumination_alignment.h"
 #include "analysis/photo_radiance.h"
+#include "analysis/probe_exposure.h"
 #include "analysis/radiosity_illumination.h"
 #include "analysis/surface_albedo.h"
 #include "core/error.h"
@@ -129,6 +130,39 @@ void report_edge_offset(const Scene& scene, const AlbedoImages& albedo, const st
         share);
 }
 
+// The photo's exposure against the probes (probe_exposure.h), from the
+// probe that shares the most surface points with it, where it differs from
+// 1 by more than kExposureTolerance; nothing where it does not or no probe
+// shares enough. The probes' units are the lights' wherever the lights were
+// measured from them (`relight fit`) or rendered with them (a Blender scene).
+std::optional<Vec3> photo_exposure_against_the_probes(const Scene& scene, const RayScene& rays,
+                                                      const GBuffer& gbuffer) {
+  std::optional<ProbeExposure> best;
+  const Probe* best_probe = nullptr;
+  for (const Probe& probe : scene.probes)
+    if (const auto e = photo_exposure_against_probe(probe, scene, rays, gbuffer);
+        e && (!best || e->points > best->points)) {
+      best = e;
+      best_probe = &probe;
+    }
+  if (!best) {
+    if (!scene.probes.empty())
+      spdlog::info("exposure: no probe shows enough of the photo's surfaces as the photo does to match their "
+                   "exposures; the photo is taken to be in the probes' units");
+    return std::nullopt;
+  }
+  const Vec3& k = best->photo_over_probe;
+  spdlog::info("exposure: the photo shows the surfaces {:.3f} {:.3f} {:.3f} times as bright as {} does ({} points, "
+               "spread {:.3f}, photo spread {:.3f})",
+               k.x(), k.y(), k.z(), best_probe->path, best->points, best->spread, best->photo_spread);
+  if (!exposure_differs(k)) return std::nullopt;
+  spdlog::warn("{}: the photo shows the surfaces {:.2f} times as bright as the probe {} does: it is divided by that, "
+               "so the albedo and every re-lit image are in the probe's units and the lights'. `relight fit` brings "
+               "the probe and the lights to the photo's instead",
+               scene.path.string(), luminance(k), best_probe->path);
+  return k;
+}
+
 }  // namespace
 
 Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& options,
@@ -147,12 +181,20 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     radiosity =
         std::make_unique<RadiosityIllumination>(scene, rays, gbuffer, lighting, radiosity_options(options),
                                                 options.direct_per_pixel, illumination_options(options), progress);
+  // The photo in the probes' units where its exposure is not theirs: the
+  // light it bounces must be in the units of the light the probes give.
+  Image photo_divided;
+  if (const auto exposure = photo_exposure_against_the_probes(scene, rays, gbuffer)) {
+    result.photo_exposure = *exposure;
+    photo_divided = scene.photo;
+    for (Vec3& p : photo_divided.pixels) p = p.cwiseQuotient(*exposure);
+  }
+  const Image& photo = result.photo_exposure != Vec3::Ones() ? photo_divided : scene.photo;
   // Light bounced off what the photo shows is the photo's radiance there;
   // `albedo` then matters only on the surfaces the camera does not see.
   std::unique_ptr<PhotoRadiance> photo_radiance;
   if (result.options.bounce_source == BounceSource::photo) {
-    photo_radiance =
-        std::make_unique<PhotoRadiance>(scene.camera, gbuffer, scene.photo, scene.probes, rays, scene.lights);
+    photo_radiance = std::make_unique<PhotoRadiance>(scene.camera, gbuffer, photo, scene.probes, rays, scene.lights);
     spdlog::info("photo radiance usable on {:.1f} % of the geometry's pixels", 100.0 * photo_radiance->usable_share());
   }
   // The illumination with `albedo` on the surfaces light bounces off (and
@@ -184,9 +226,9 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     IlluminationAlignment::Aligned aligned = alignment.align(illumination.surface);
     AlbedoImages albedo =
         options.align_edges
-            ? recover_albedo(scene.photo, scene.photo_clipped, {std::move(aligned.illumination), illumination.background},
+            ? recover_albedo(photo, scene.photo_clipped, {std::move(aligned.illumination), illumination.background},
                              gbuffer)
-            : recover_albedo(scene.photo, scene.photo_clipped, illumination, gbuffer);
+            : recover_albedo(photo, scene.photo_clipped, illumination, gbuffer);
     albedo.edge_mismatch = std::move(aligned.moved);
     albedo.edge_offset_px = aligned.motion_px;
     return albedo;
@@ -248,7 +290,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     // the photo back, its noise and all. The residual is taken before that
     // division, from the albedo the photo's radiance gave.
     IlluminationImages back = render_with(final_albedo, nullptr, illumination_options(options), "rendered back");
-    result.residual = residual_of(scene.photo, result.albedo.albedo, back.surface, result.coverage);
+    result.residual = residual_of(photo, result.albedo.albedo, back.surface, result.coverage);
     AlbedoImages closing = divide(back);
     closing.unseen_triangles = std::move(result.albedo.unseen_triangles);
     result.illumination = std::move(back);
@@ -260,7 +302,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     IlluminationOptions back_options = illumination_options(options);
     back_options.paths_per_pixel = std::max(1, options.paths_per_pixel / kResidualPathsDivisor);
     const Image back = render_with(final_albedo, nullptr, back_options, "residual").surface;
-    result.residual = residual_of(scene.photo, result.albedo.albedo, back, result.coverage);
+    result.residual = residual_of(photo, result.albedo.albedo, back, result.coverage);
   }
   report_edge_offset(scene, result.albedo, result.coverage, options.align_edges);
   if (result.residual > kLargeResidual)

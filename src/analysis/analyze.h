@@ -75,6 +75,10 @@ struct Analysis {
   // surface) is from the photo: sum |difference| / sum photo, over blocks of
   // 8 x 8 pixels that see only geometry.
   float residual = 0.0f;
+  // The photo's values per unit of the probes' (probe_exposure.h), where
+  // found to differ from 1: the analysis divided photo / this, and the
+  // albedo and every re-lit image are in the probes' units (the lights').
+  Vec3 photo_exposure = Vec3::Ones();
 };
 
 // Renders what the scene's camera sees (the G-buffer) with the options' seed

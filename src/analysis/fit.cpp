@@ -121,10 +121,6 @@ void solve_channel(const Image& photo, std::vector<Basis>& bases, const std::vec
   for (Eigen::Index j = 0; j < n; ++j) bases[unknown[j]].emission[c] = float(std::max(0.0, x[j]));
 }
 
-// A probe within this of the photo's exposure is kept as it is: closer is
-// the estimate's own error (a mirror ball's rim), a camera's exposure steps
-// are a third of a stop (26 %).
-constexpr float kExposureTolerance = 0.05f;
 
 void scale_probe(Probe& probe, const Vec3& factor) {
   probe.scale = probe.scale.cwiseProduct(factor);
@@ -313,13 +309,14 @@ class LightingFit {
   void match_probe_to_photo(Probe& probe) const {
     const auto exposure = photo_exposure_against_probe(probe, scene_, rays_, gbuffer_);
     if (!exposure) {
-      spdlog::info("{}: the probe and the photo show too few surface points in common to match their exposures; "
-                   "the probe is taken to be in the photo's units",
+      spdlog::info("{}: the probe shows too few of the photo's surfaces, or not as the photo does (an environment "
+                   "image rather than a probe taken in the scene), to match their exposures; the probe is taken to "
+                   "be in the photo's units",
                    probe.path);
       return;
     }
     const Vec3& k = exposure->photo_over_probe;
-    if (k.array().log().abs().maxCoeff() < std::log(1.0f + kExposureTolerance)) {
+    if (!exposure_differs(k)) {
       spdlog::info("{}: the probe's exposure matches the photo's within {:.0f} % ({} surface points both show)",
                    probe.path, 100 * kExposureTolerance, exposure->points);
       return;

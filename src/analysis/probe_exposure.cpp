@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 
+#include <spdlog/spdlog.h>
+
 #include "core/statistics.h"
 
 namespace relight {
@@ -60,7 +62,7 @@ std::optional<ProbeExposure> photo_exposure_against_probe(const Probe& probe, co
                                                           const RayScene& rays, const GBuffer& gbuffer) {
   const ProbeFrame frame(probe.forward, probe.up);
   std::array<std::vector<double>, 3> log_ratio;
-  std::vector<double> log_luminance_ratio;
+  std::vector<double> log_luminance_ratio, log_photo;
   for (int y = 0; y < probe.image.height; ++y)
     for (int x = 0; x < probe.image.width; ++x) {
       const Vec3& shown = probe.image.at(x, y);
@@ -73,6 +75,7 @@ std::optional<ProbeExposure> photo_exposure_against_probe(const Probe& probe, co
       if (photo.minCoeff() <= 0.0f) continue;
       for (int c = 0; c < 3; ++c) log_ratio[c].push_back(std::log(double(photo[c]) / double(shown[c])));
       log_luminance_ratio.push_back(std::log(double(luminance(photo)) / double(luminance(shown))));
+      log_photo.push_back(std::log(double(luminance(photo))));
     }
   if (log_luminance_ratio.size() < kMinExposurePoints) return std::nullopt;
   ProbeExposure exposure;
@@ -81,6 +84,15 @@ std::optional<ProbeExposure> photo_exposure_against_probe(const Probe& probe, co
   const double middle = percentile(log_luminance_ratio, 0.5);
   for (double& r : log_luminance_ratio) r = std::abs(r - middle);
   exposure.spread = float(1.4826 * percentile(log_luminance_ratio, 0.5));
+  const double photo_middle = percentile(log_photo, 0.5);
+  for (double& l : log_photo) l = std::abs(l - photo_middle);
+  exposure.photo_spread = float(1.4826 * percentile(log_photo, 0.5));
+  if (!(exposure.spread < kMaxUnexplainedSpread * exposure.photo_spread)) {
+    spdlog::info("{}: over the {} surface points it shares with the photo, photo / probe varies by {:.3f} against "
+                 "the photo's {:.3f}: it does not show them as the photo does",
+                 probe.path, exposure.points, exposure.spread, exposure.photo_spread);
+    return std::nullopt;
+  }
   return exposure;
 }
 

@@ -9,6 +9,7 @@
 // camera sees in the photo, not clipped there).
 #pragma once
 
+#include <cmath>
 #include <optional>
 
 #include "render/gbuffer.h"
@@ -21,13 +22,34 @@ struct ProbeExposure {
   Vec3 photo_over_probe = Vec3::Ones();  // multiply the probe by this to get the photo's units
   size_t points = 0;                     // surface points both see
   float spread = 0.0f;                   // of log luminance ratio (1.4826 x MAD) over them
+  float photo_spread = 0.0f;             // of the photo's log luminance over them
 };
+
+// An exposure within this of another is taken to be the same: closer is an
+// estimate's own error (a mirror ball's rim), a camera's exposure steps are
+// a third of a stop (26 %).
+constexpr float kExposureTolerance = 0.05f;
+
+// Whether an exposure ratio lies outside 1 +- kExposureTolerance in some channel.
+inline bool exposure_differs(const Vec3& ratio) {
+  return ratio.array().log().abs().maxCoeff() >= std::log(1.0f + kExposureTolerance);
+}
 
 // Fewer shared points than this fix no exposure.
 constexpr size_t kMinExposurePoints = 100;
 
+// A probe in the scene shows what the photo shows, shadows and textures
+// alike: the ratio photo / probe varies far less over the shared points than
+// the photo does. An environment image that was never taken in the scene (a
+// Blender world's HDRI, exported as a probe at the camera) shows something
+// else there, and its ratio varies as much as the photo: no exposure is read
+// from it. The reference scenes' probes leave 0.28 of the photo's spread
+// (outdoor, the least varied) or under 0.05; an HDRI, all of it.
+constexpr float kMaxUnexplainedSpread = 0.5f;
+
 // Nothing where the probe and the photo share fewer than kMinExposurePoints
-// surface points.
+// surface points, or the probe does not show them as the photo does
+// (kMaxUnexplainedSpread).
 std::optional<ProbeExposure> photo_exposure_against_probe(const Probe& probe, const Scene& scene,
                                                           const RayScene& rays, const GBuffer& gbuffer);
 

@@ -127,10 +127,12 @@ std::optional<Vec3> emission_from_probe(const Probe& probe, const Light& light, 
       if (factor < 0.05f) return std::nullopt;  // the probe is (nearly) outside the cone
       return Vec3(seen.irradiance * (4.0f * kPi * (d2 + light.radius * light.radius) / factor));
     }
-    case LightType::area: {  // E = L Omega, Omega = w h cos / d^2, L = P / (4 w h)
+    case LightType::area: {  // E = L Omega, L = P / (4 w h), Omega the rectangle's solid angle
       const float cos_light = dir.dot(light.direction.normalized());
       if (cos_light < 0.1f) return std::nullopt;
-      return Vec3(seen.irradiance * (4.0f * d2 / cos_light));
+      const float omega = area_light_solid_angle(light, probe.position);
+      if (!(omega > 0.0f)) return std::nullopt;
+      return Vec3(seen.irradiance * (4.0f * light.size.x() * light.size.y() / omega));
     }
     case LightType::directional: break;
   }

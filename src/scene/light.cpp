@@ -39,6 +39,35 @@ float spot_factor(const Light& light, float c) {
   return spot_cone(half_angle_cosine(light.spot_angle_deg), light.blend, c);
 }
 
+AreaLightSides area_light_sides(const Light& light) {
+  const Vec3 axis = light.direction.normalized();
+  const Vec3 w = axis.cross(light.up).normalized();
+  return {w, w.cross(axis)};
+}
+
+namespace {
+
+// The solid angle of triangle abc (vectors from the viewpoint), Van
+// Oosterom & Strackee (1983): tan(omega / 2) = |a . (b x c)| /
+// (|a||b||c| + (a . b)|c| + (a . c)|b| + (b . c)|a|).
+float triangle_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const float la = a.norm(), lb = b.norm(), lc = c.norm();
+  const float numerator = std::abs(a.dot(b.cross(c)));
+  const float denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+  return 2.0f * std::atan2(numerator, denominator);
+}
+
+}  // namespace
+
+float area_light_solid_angle(const Light& light, const Vec3& from) {
+  const AreaLightSides sides = area_light_sides(light);
+  const Vec3 half_w = 0.5f * light.size.x() * sides.w, half_h = 0.5f * light.size.y() * sides.h;
+  const Vec3 centre = light.position - from;
+  const Vec3 a = centre - half_w - half_h, b = centre + half_w - half_h, c = centre + half_w + half_h,
+             d = centre - half_w + half_h;
+  return triangle_solid_angle(a, b, c) + triangle_solid_angle(a, c, d);
+}
+
 LightSampler::LightSampler(const Light& light) : light_(light), emission_(light.emission()) {
   switch (light.type) {
     case LightType::point: break;
@@ -46,11 +75,13 @@ LightSampler::LightSampler(const Light& light) : light_(light), emission_(light.
       axis_ = light.direction.normalized();
       cos_outer_ = half_angle_cosine(light.spot_angle_deg);
       break;
-    case LightType::area:
+    case LightType::area: {
       axis_ = light.direction.normalized();
-      side_w_ = axis_.cross(light.up).normalized();
-      side_h_ = side_w_.cross(axis_);
+      const AreaLightSides sides = area_light_sides(light);
+      side_w_ = sides.w;
+      side_h_ = sides.h;
       break;
+    }
     case LightType::directional:
       axis_ = -light.direction.normalized();
       cos_outer_ = half_angle_cosine(light.angle_deg);

@@ -33,6 +33,17 @@ struct Light {
   Vec3 emission() const { return color * (type == LightType::directional ? irradiance : power); }
 };
 
+// An area light's unit sides: w along direction x up, h = w x direction.
+struct AreaLightSides {
+  Vec3 w, h;
+};
+AreaLightSides area_light_sides(const Light& light);
+
+// The solid angle (sr) an area light's rectangle covers seen from `from`,
+// exactly (the small-light limit w h cos / d^2 overstates it for a light
+// near the viewpoint).
+float area_light_solid_angle(const Light& light, const Vec3& from);
+
 // One sample of a light as seen from a surface point.
 struct LightSample {
   Vec3 direction;      // unit, from the surface point towards the light
