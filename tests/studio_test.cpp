@@ -26,6 +26,7 @@
 
 #include "gui/colour_temperature.h"
 #include "gui/environment_entry.h"
+#include "gui/geometry_overlay.h"
 #include "gui/geometry_view.h"
 #include "gui/light_dialog.h"
 #include "gui/light_list_model.h"
@@ -821,7 +822,7 @@ class StudioTest : public QObject {
     show_converged_frame();
     const QImage before = window_->photo_view().displayed_image();
     QCOMPARE(before.size(), QSize(320, 240));
-    QCOMPARE(before, to_qimage(*window_->photo_view().relit(), 0.0f));
+    QCOMPARE(before, to_qimage(*window_->photo_view().relit(), window_->photo_view().exposure()));
     QTest::keyClick(&window_->geometry_view(), Qt::Key_Left, Qt::ShiftModifier);  // 50 cm
     show_converged_frame();
     const QImage after = window_->photo_view().displayed_image();
@@ -1199,6 +1200,76 @@ class StudioTest : public QObject {
       QVERIFY(corner.has_value());
       QVERIFY2(shows_colour(image, *corner, light_colour(true, true)), qPrintable(QString::number(i)));
     }
+  }
+
+  // Dragging a sun's marker in the geometry view turns the sun round the
+  // scene: the marker follows the cursor, the sun shines from there through
+  // the middle, and the drag is one undo step.
+  void dragging_a_suns_marker_turns_it_round_the_scene() {
+    Light sun = document().light(0);
+    sun.type = LightType::directional;
+    sun.irradiance = 2.0f;
+    sun.direction = Vec3(0.3f, 0.2f, -1.0f).normalized();
+    document().set_light(0, sun);
+    window_->select_light(0);
+    GeometryView& view = window_->geometry_view();
+    const QPoint at = dot_of(0), by(30, 12);
+    QVERIFY(view.rect().contains(at));
+    const int steps = window_->undo_stack().count();
+    drag_in_geometry_view(at, by);
+    const Light turned = document().light(0);
+    QVERIFY(turned.direction.dot(sun.direction) < 0.999f);
+    QVERIFY(turned.direction.z() < 0.0f);  // still shining down
+    const auto now = view.project(view.marker_position(turned));
+    QVERIFY(now.has_value());
+    QVERIFY2((*now - QPointF(at + by)).manhattanLength() < 2.0,
+             qPrintable(QString("%1 %2").arg(now->x()).arg(now->y())));
+    QCOMPARE(window_->undo_stack().count(), steps + 1);
+    window_->undo_stack().undo();
+    QVERIFY((document().light(0).direction - sun.direction).norm() < 1e-5f);
+  }
+
+  // View > Show the Geometry Over the Photo draws the model's edges as the
+  // camera sees them over the picture, at the G-buffer's edge pixels, and
+  // takes them away again.
+  void the_geometry_over_the_photo_is_a_view_toggle() {
+    show_converged_frame();
+    PhotoView& view = window_->photo_view();
+    const auto edge_pixels = [&] {
+      const QImage image = view.grab().toImage();
+      int n = 0;
+      for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) n += image.pixelColor(x, y) == kGeometryEdgeColour;
+      return n;
+    };
+    const QImage edges = geometry_edges_image(document().studio_scene().analysed->gbuffer());
+    int marked = 0;
+    for (int y = 0; y < edges.height(); ++y)
+      for (int x = 0; x < edges.width(); ++x) marked += qAlpha(edges.pixel(x, y)) != 0;
+    QVERIFY2(marked > 200, qPrintable(QString::number(marked)));  // the room's walls, floor, table meet
+    QCOMPARE(edge_pixels(), 0);
+    QAction* toggle = window_->findChild<QAction*>("show_geometry");
+    QVERIFY(toggle);
+    toggle->trigger();
+    QVERIFY(view.geometry_shown());
+    keep_picture("geometry_over_photo", view);
+    QVERIFY2(edge_pixels() > marked / 2, qPrintable(QString("%1 of %2").arg(edge_pixels()).arg(marked)));
+    toggle->trigger();
+    QCOMPARE(edge_pixels(), 0);
+  }
+
+  // A photo opens at the exposure that shows it (its brightest 1 % white),
+  // in the panel and the view; a photo 4 times as bright opens 2 stops lower.
+  void the_photo_opens_at_an_exposure_that_shows_it() {
+    const Image& photo = document().studio_scene().analysed->scene().photo;
+    const float stops = display_exposure_for(photo);
+    QCOMPARE(window_->findChild<QDoubleSpinBox*>("exposure")->value(), double(stops));
+    QCOMPARE(window_->photo_view().exposure(), stops);
+    Image brighter = photo;
+    for (Vec3& p : brighter.pixels) p *= 4.0f;
+    QCOMPARE(display_exposure_for(brighter), stops - 2.0f);
+    QCOMPARE(display_exposure_for(Image(8, 6, Vec3(0.5f, 0.5f, 0.5f))), 1.0f);
+    QCOMPARE(display_exposure_for(Image(8, 6, Vec3::Zero())), 0.0f);
   }
 
   void export_writes_the_full_size_image() {

@@ -377,6 +377,23 @@ Vec3 GeometryView::dragged(const Vec3& start, const QPointF& by) const {
   return start + metres_per_pixel * (float(by.x()) * e.right - float(by.y()) * e.up);
 }
 
+Light GeometryView::sun_dragged_to(const Light& sun, const QPointF& point) const {
+  const Eye e = eye();
+  const Vec3 ray = (e.forward + float(point.x() - 0.5 * width()) / e.focal * e.right -
+                    float(point.y() - 0.5 * height()) / e.focal * e.up)
+                       .normalized();
+  // The marker's sphere (marker_position) met by the ray through the point;
+  // past its rim, the ray's point nearest the centre, out on the sphere.
+  const float radius = 0.45f * scene_size_;
+  const Vec3 to_centre = centre_ - e.position;
+  const float along = to_centre.dot(ray), miss2 = to_centre.squaredNorm() - along * along;
+  const Vec3 on_ray = e.position + (along - std::sqrt(std::max(0.0f, radius * radius - miss2))) * ray;
+  const Vec3 out = on_ray - centre_;
+  Light turned = sun;
+  if (out.norm() > 0.0f) turned.direction = Vec3(-out.normalized());
+  return turned;
+}
+
 void GeometryView::mousePressEvent(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton || !document_) return;
   setFocus();
@@ -391,8 +408,8 @@ void GeometryView::mousePressEvent(QMouseEvent* event) {
   if (hit >= 0) {
     emit lightClicked(hit);
     drag_light_ = document_->light(hit);
-    // A sun has no position: it is selected, not dragged.
-    drag_ = drag_light_.type == LightType::directional ? Drag::none : Drag::light;
+    // A sun has no position: its marker turns it round the scene.
+    drag_ = drag_light_.type == LightType::directional ? Drag::sun : Drag::light;
   } else {
     drag_ = Drag::orbit;
     drag_yaw_ = yaw_deg_;
@@ -408,6 +425,8 @@ void GeometryView::mouseMoveEvent(QMouseEvent* event) {
     Light moved = drag_light_;
     moved.position = dragged(drag_light_.position, d);
     emit lightDragged(selected_, moved);
+  } else if (drag_ == Drag::sun && selected_ >= 0) {
+    emit lightDragged(selected_, sun_dragged_to(drag_light_, event->position()));
   } else if (drag_ == Drag::aim && selected_ >= 0) {
     const Vec3 aim = dragged(drag_aim_, d) - drag_light_.position;
     if (aim.norm() == 0.0f) return;
@@ -418,7 +437,8 @@ void GeometryView::mouseMoveEvent(QMouseEvent* event) {
 }
 
 void GeometryView::mouseReleaseEvent(QMouseEvent* event) {
-  if ((drag_ == Drag::light || drag_ == Drag::aim) && selected_ >= 0 && event->position() != drag_start_)
+  if ((drag_ == Drag::light || drag_ == Drag::aim || drag_ == Drag::sun) && selected_ >= 0 &&
+      event->position() != drag_start_)
     emit lightDropped(selected_, drag_light_, document_->light(selected_));
   drag_ = Drag::none;
 }

@@ -4,7 +4,8 @@
 // shape (light_shapes.h). Drawn
 // with QPainter (flat-shaded triangles, back to front), so it needs no
 // OpenGL. Mouse: click a dot to select it, drag it to move the light in the
-// plane facing the view, drag the selected light's aim square to aim it,
+// plane facing the view (a sun's: round the scene, turning where it shines
+// from), drag the selected light's aim square to aim it,
 // drag elsewhere to orbit, wheel to zoom. Keys
 // (thesis 6.3): arrows move the selected light up/down and sideways,
 // Home/End forwards/backwards in this view's frame, Shift ten times
@@ -110,6 +111,9 @@ class GeometryView : public QWidget {
   bool on_aim_handle(const QPointF& point) const;  // the selected light's
   // A point dragged by `by` pixels in the plane through it facing the view.
   Vec3 dragged(const Vec3& start, const QPointF& by) const;
+  // A sun whose marker (on a sphere about the centre) is under the widget
+  // point: its direction from there through the centre.
+  Light sun_dragged_to(const Light& sun, const QPointF& point) const;
   void geometry_changed();
 
   LightingDocument* document_ = nullptr;
@@ -121,7 +125,7 @@ class GeometryView : public QWidget {
   Vec3 seen_centre_ = Vec3::Zero();
   float yaw_deg_ = 0.0f, pitch_deg_ = 35.0f, distance_ = 1.0f;
   QImage mesh_image_;  // the shaded mesh for the current orbit and size
-  enum class Drag { none, orbit, light, aim } drag_ = Drag::none;
+  enum class Drag { none, orbit, light, aim, sun } drag_ = Drag::none;
   QPointF drag_start_;
   float drag_yaw_ = 0.0f, drag_pitch_ = 0.0f;
   Light drag_light_;

@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "gui/environment_entry.h"
+#include "gui/geometry_overlay.h"
 #include "gui/geometry_view.h"
 #include "gui/light_commands.h"
 #include "gui/light_details.h"
@@ -24,6 +25,7 @@
 #include "gui/photo_panel.h"
 #include "gui/photo_view.h"
 #include "gui/task_status.h"
+#include "gui/tone_map.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
 
@@ -261,6 +263,12 @@ void MainWindow::make_menus() {
   shapes->setCheckable(true);
   shapes->setChecked(photo_view().shapes_shown());
   connect(shapes, &QAction::toggled, &photo_view(), &PhotoView::set_shapes_shown);
+  QAction* geometry_over_photo = view->addAction(tr("Show the &Geometry Over the Photo"), QKeySequence(tr("Ctrl+G")));
+  geometry_over_photo->setObjectName("show_geometry");
+  geometry_over_photo->setCheckable(true);
+  geometry_over_photo->setChecked(photo_view().geometry_shown());
+  geometry_over_photo->setToolTip(tr("The model's edges as the photo's camera sees them, over the photo"));
+  connect(geometry_over_photo, &QAction::toggled, &photo_view(), &PhotoView::set_geometry_shown);
 }
 
 void MainWindow::run_task(const QString& label, BackgroundTask::Work work, std::function<void(const QString&)> done) {
@@ -336,6 +344,8 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   photo_panel_->show_ambient(rig.environment_scale);
   photo_view().set_photo(std::make_shared<const Image>(scene_->analysed->scene().photo));
   photo_view().set_relit(nullptr);
+  photo_view().set_geometry_edges(geometry_edges_image(scene_->analysed->gbuffer()));
+  photo_panel_->set_exposure(display_exposure_for(scene_->analysed->scene().photo));
   select_light(document_->light_count() > 0 ? 0 : -1);
   remember(kRecentScenes, scene_path);
   if (!rig_path_.isEmpty()) remember(kRecentRigs, rig_path_);

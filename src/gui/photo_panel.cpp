@@ -64,6 +64,8 @@ void PhotoPanel::show_ambient(float scale) {
   ambient_->setValue(double(scale));
 }
 
+void PhotoPanel::set_exposure(float stops) { exposure_->setValue(double(stops)); }
+
 void PhotoPanel::enable_ambient(bool enabled) { ambient_->setEnabled(enabled); }
 
 void PhotoPanel::show_quality(FrameQuality quality, Backend backend) {

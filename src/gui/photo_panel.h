@@ -26,6 +26,7 @@ class PhotoPanel : public QWidget {
   void show_ambient(float scale);
   void enable_ambient(bool enabled);
   void show_quality(FrameQuality quality, Backend backend);
+  void set_exposure(float stops);  // the display exposure, as if typed
 
  signals:
   void ambientEdited(float scale);  // the user set the ambient level

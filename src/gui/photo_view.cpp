@@ -209,7 +209,21 @@ void PhotoView::paintEvent(QPaintEvent*) {
     if (x - r.left() > 70) tag(tr("Before"), x - metrics.horizontalAdvance(tr("Before")) - 20);
     if (r.right() - x > 70) tag(tr("After"), x + 8);
   }
+  if (geometry_shown_ && !geometry_edges_.isNull()) {
+    painter.setRenderHint(QPainter::SmoothPixmapTransform, false);  // one-pixel lines stay crisp
+    painter.drawImage(r, geometry_edges_);
+  }
   if (document_ && shapes_shown_) draw_light_shapes(painter);
+}
+
+void PhotoView::set_geometry_edges(QImage edges) {
+  geometry_edges_ = std::move(edges);
+  update();
+}
+
+void PhotoView::set_geometry_shown(bool shown) {
+  geometry_shown_ = shown;
+  update();
 }
 
 void PhotoView::mousePressEvent(QMouseEvent* event) {

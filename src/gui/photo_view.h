@@ -3,7 +3,8 @@
 // photo as taken). A click on the picture reports the pixel and the keys
 // held, for selecting the light there or placing one in front of what was
 // clicked. Over the picture, each light's shape (light_shapes.h) projected
-// with the re-lit view's camera, coloured as in the geometry view. The
+// with the re-lit view's camera, coloured as in the geometry view, and, on
+// demand, the geometry's edges as the camera sees them. The
 // selected light's dot is a handle: dragged, the light moves across the
 // surface under the cursor, keeping its height above the surface below it;
 // a spot's or area light's aim (the end of its cone, a square) is another:
@@ -41,6 +42,11 @@ class PhotoView : public QWidget {
   void set_selected(int index);
   void set_shapes_shown(bool shown);
   bool shapes_shown() const { return shapes_shown_; }
+  // The geometry's edges through the photo's camera (geometry_overlay.h),
+  // drawn over the picture while shown ("through the camera").
+  void set_geometry_edges(QImage edges);
+  void set_geometry_shown(bool shown);
+  bool geometry_shown() const { return geometry_shown_; }
   // Where a sun's arrow starts: a point in front of the camera seen near
   // the picture's top-left corner, in world space.
   Vec3 sun_arrow_origin() const;
@@ -87,6 +93,8 @@ class PhotoView : public QWidget {
   LightingDocument* document_ = nullptr;
   int selected_ = -1;
   bool shapes_shown_ = true;
+  QImage geometry_edges_;
+  bool geometry_shown_ = false;
   Handle drag_ = Handle::none;
   Light drag_light_;
   float drag_height_ = 0.0f;  // the dragged light's height above the surface below it

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace relight::gui {
 
@@ -42,6 +43,18 @@ QImage to_qimage(const Image& linear, float exposure_stops) {
     }
   });
   return image;
+}
+
+float display_exposure_for(const Image& photo) {
+  std::vector<float> peaks;
+  peaks.reserve(photo.size());
+  for (const Vec3& p : photo.pixels)
+    if (p.allFinite()) peaks.push_back(p.maxCoeff());
+  if (peaks.empty()) return 0.0f;
+  const auto at = peaks.begin() + std::ptrdiff_t(0.99 * double(peaks.size() - 1));
+  std::nth_element(peaks.begin(), at, peaks.end());
+  if (!(*at > 0.0f)) return 0.0f;
+  return std::clamp(std::round(-2.0f * std::log2(*at)) / 2.0f, -10.0f, 10.0f);
 }
 
 QColor display_colour(const Vec3& linear) {
