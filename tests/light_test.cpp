@@ -44,12 +44,14 @@ TriangleMesh plane_mesh() {
 // A scene, its lighting and an integrator with direct light only.
 class LitPlane {
  public:
-  LitPlane(TriangleMesh mesh, std::vector<Light> lights, Environment env = Environment::constant(Vec3::Zero()))
+  LitPlane(TriangleMesh mesh, std::vector<Light> lights, Environment env = Environment::constant(Vec3::Zero()),
+           int max_exhaustive_lights = IntegratorOptions{}.max_exhaustive_lights)
       : mesh_(std::move(mesh)), scene_(mesh_) {
     lighting_.lights = std::move(lights);
     lighting_.environment = std::move(env);
     IntegratorOptions options;
     options.max_bounces = 0;
+    options.max_exhaustive_lights = max_exhaustive_lights;
     integrator_ = std::make_unique<Integrator>(scene_, lighting_, nullptr, options);
   }
 
@@ -114,6 +116,48 @@ Light sun(const Vec3& direction, float irradiance, float angle_deg = 0.0f) {
   l.irradiance = irradiance;
   l.angle_deg = angle_deg;
   return l;
+}
+
+// A string of 200 bulbs 0.5 m above the plane, every third one bright and
+// warm, the rest dim and blue: far more than get a shadow ray each.
+std::vector<Light> string_of_bulbs() {
+  std::vector<Light> bulbs;
+  for (int i = 0; i < 200; ++i) {
+    Light l = point_light(Vec3(-5.0f + 0.05f * float(i), 0.3f * std::sin(0.2f * float(i)), 0.5f), i % 3 ? 2.0f : 20.0f);
+    l.color = i % 3 ? Vec3(0.6f, 0.7f, 1.0f) : Vec3(1.0f, 0.8f, 0.5f);
+    bulbs.push_back(l);
+  }
+  return bulbs;
+}
+
+// ---------------------------------------------------------------- many lights
+
+// Resampling the bulbs (one shadow ray a sample) is unbiased: the mean
+// illumination is the closed form sum P cos / (4 pi^2 d^2) within 1 %.
+TEST(ManyLights, ResampledBulbsGiveTheClosedForm) {
+  const std::vector<Light> bulbs = string_of_bulbs();
+  const LitPlane scene(plane_mesh(), bulbs);
+  for (const Vec3& at : {Vec3(0, 0, 0), Vec3(-4.2f, 0.5f, 0), Vec3(3, -1, 0)}) {
+    Eigen::Vector3d expected = Eigen::Vector3d::Zero();
+    for (const Light& l : bulbs) {
+      const Vec3 d = l.position - at;
+      const double cos = d.z() / d.norm();
+      expected += (l.emission().cast<double>() * cos / (4.0 * kPiD * kPiD * d.squaredNorm()));
+    }
+    expect_within_1_percent(scene.mean_illumination(at.x(), at.y(), 40000), expected.cast<float>());
+  }
+}
+
+// With shadows (a board 0.25 m up, under half the string) the resampled mean
+// is the exhaustive one (every bulb its own shadow ray) within 1 %.
+TEST(ManyLights, ResampledShadowsMatchEveryBulbsOwnRay) {
+  TriangleMesh mesh = plane_mesh();
+  add_square(mesh, Vec3(-2.5f, 0.0f, 0.25f), 1.0f);
+  const LitPlane resampled(mesh, string_of_bulbs());
+  const LitPlane exhaustive(mesh, string_of_bulbs(), Environment::constant(Vec3::Zero()), 1000);
+  for (const Vec2& at : {Vec2(-2.5f, 0.0f), Vec2(-1.2f, 0.4f), Vec2(0.5f, 0.0f)})
+    expect_within_1_percent(resampled.mean_illumination(at.x(), at.y(), 400000),
+                            exhaustive.mean_illumination(at.x(), at.y(), 400));
 }
 
 // ---------------------------------------------------------------- point

@@ -8,8 +8,24 @@ namespace relight {
 Integrator::Integrator(const RayScene& scene, const Lighting& lighting, const SurfaceAlbedo* albedo,
                        IntegratorOptions options, const KnownRadiance* known)
     : scene_(scene), lighting_(lighting), albedo_(albedo), options_(options), known_(known) {
-  for (const auto& l : lighting_.lights)
-    if (l.enabled && !l.emission().isZero()) active_lights_.emplace_back(l);
+  std::vector<const Light*> positioned;
+  for (const auto& l : lighting_.lights) {
+    if (!l.enabled || l.emission().isZero()) continue;
+    if (l.type == LightType::directional)
+      active_lights_.emplace_back(l);  // a sun lights everything alike: no point choosing
+    else
+      positioned.push_back(&l);
+  }
+  if (int(positioned.size()) <= options_.max_exhaustive_lights) {
+    for (const Light* l : positioned) active_lights_.emplace_back(*l);
+    return;
+  }
+  std::vector<float> power;
+  for (const Light* l : positioned) {
+    pooled_lights_.emplace_back(*l);
+    power.push_back(luminance(l->emission()));
+  }
+  pooled_power_ = Distribution1D(std::move(power));
 }
 
 Vec3 Integrator::environment(const Vec3& origin, const Vec3& dir) const {
@@ -17,16 +33,45 @@ Vec3 Integrator::environment(const Vec3& origin, const Vec3& dir) const {
   return env.radiance(env.probe_for(origin), dir);
 }
 
+Vec3 Integrator::unoccluded(const SurfacePoint& p, const LightSample& s) const {
+  if (s.irradiance.isZero()) return Vec3::Zero();
+  if (s.direction.dot(p.geometric_normal) <= 0.0f) return Vec3::Zero();  // below the actual surface
+  const ShadowRay ray = scene_.shadow_ray(p, s.direction, s.distance);
+  return scene_.occluded(ray.origin, ray.dir, ray.tmax) ? Vec3::Zero() : s.irradiance;
+}
+
 Vec3 Integrator::from_lights(const SurfacePoint& p, Rng& rng) const {
   Vec3 sum = Vec3::Zero();
-  for (const LightSampler& light : active_lights_) {
-    const LightSample s = light.sample(p.position, p.normal, rng.uniform2());
-    if (s.irradiance.isZero()) continue;
-    if (s.direction.dot(p.geometric_normal) <= 0.0f) continue;  // below the actual surface
-    const ShadowRay ray = scene_.shadow_ray(p, s.direction, s.distance);
-    if (!scene_.occluded(ray.origin, ray.dir, ray.tmax)) sum += s.irradiance;
-  }
+  for (const LightSampler& light : active_lights_)
+    sum += unoccluded(p, light.sample(p.position, p.normal, rng.uniform2()));
+  if (!pooled_lights_.empty()) sum += from_pooled_lights(p, rng);
   return sum * kInvPi;
+}
+
+Vec3 Integrator::from_pooled_lights(const SurfacePoint& p, Rng& rng) const {
+  // kPicks lights a point, each resampled from kCandidates: four shadow rays
+  // average the bulbs' shadows four times as well as one (6 dB less noise
+  // on the example room), and cost less than the 16 lights that get a ray
+  // each below the pool.
+  constexpr int kPicks = 4, kCandidates = 8;
+  const float lights = float(pooled_power_.size());
+  Vec3 sum = Vec3::Zero();
+  for (int pick = 0; pick < kPicks; ++pick) {
+    float total_weight = 0.0f, kept_target = 0.0f;
+    LightSample kept{};
+    for (int k = 0; k < kCandidates; ++k) {
+      float offset, density;
+      const int i = pooled_power_.sample(rng.uniform(), offset, density);
+      const LightSample s = pooled_lights_[size_t(i)].sample(p.position, p.normal, rng.uniform2());
+      if (s.irradiance.isZero() || s.direction.dot(p.geometric_normal) <= 0.0f) continue;
+      const float target = luminance(s.irradiance);
+      const float weight = target / (density / lights);  // target / the probability of drawing light i
+      total_weight += weight;
+      if (rng.uniform() * total_weight < weight) kept = s, kept_target = target;
+    }
+    if (kept_target > 0.0f) sum += unoccluded(p, kept) * (total_weight / (float(kCandidates) * kept_target));
+  }
+  return sum / float(kPicks);
 }
 
 Vec3 Integrator::from_environment(const SurfacePoint& p, const ProbeEnvironment* probe, Rng& rng) const {

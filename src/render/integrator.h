@@ -1,5 +1,6 @@
 // Integrator: the light arriving at a diffuse surface point — direct light
-// from every light (next-event estimation with shadow rays), the environment
+// from every light (next-event estimation with shadow rays; many lights share
+// them by resampling), the environment
 // (importance-sampled, multiple importance sampling with the cosine lobe), and
 // multi-bounce diffuse interreflection (path tracing) with a white or a given
 // albedo on the surfaces light bounces off.
@@ -68,6 +69,9 @@ struct IntegratorOptions {
   // lights (`direct` stays 0), for renders that add it apart (the
   // interactive engine renders each light's direct light by itself).
   bool first_surface_lights = true;
+  // Up to this many lights (suns aside) each get a shadow ray at every
+  // point; more (a string of bulbs) share one, resampled (from_pooled_lights).
+  int max_exhaustive_lights = 16;
 };
 
 class Integrator {
@@ -100,6 +104,15 @@ class Integrator {
  private:
   // Light from the lights, and one environment sample, reflected by a white surface at p.
   Vec3 from_lights(const SurfacePoint& p, Rng& rng) const;
+  // The irradiance of one light sample at p where it is above p's surface
+  // and unoccluded, else 0.
+  Vec3 unoccluded(const SurfacePoint& p, const LightSample& s) const;
+  // Many lights: kLightCandidates drawn by power, one of them kept with
+  // probability proportional to its unshadowed irradiance at p (resampled
+  // importance sampling, Talbot et al. 2005), one shadow ray to it: an
+  // unbiased estimate of their irradiance whose cost does not grow with
+  // their number.
+  Vec3 from_pooled_lights(const SurfacePoint& p, Rng& rng) const;
   Vec3 from_environment(const SurfacePoint& p, const ProbeEnvironment* probe, Rng& rng) const;
 
   const RayScene& scene_;
@@ -107,7 +120,9 @@ class Integrator {
   const SurfaceAlbedo* albedo_;
   IntegratorOptions options_;
   const KnownRadiance* known_;
-  std::vector<LightSampler> active_lights_;
+  std::vector<LightSampler> active_lights_;  // each sampled at every point
+  std::vector<LightSampler> pooled_lights_;  // resampled (from_pooled_lights)
+  Distribution1D pooled_power_;              // their powers, for drawing candidates
 };
 
 }  // namespace relight
