@@ -9,6 +9,7 @@
 #include <set>
 #include <vector>
 
+#include "core/progress.h"
 #include "core/sampling.h"
 #include "core/statistics.h"
 #include "scene/camera.h"
@@ -49,6 +50,19 @@ TEST(Percentile, IsTheValueThatShareOfTheValuesAreAtMost) {
   EXPECT_EQ(relight::percentile(frame_ms, 0.1), 1.0);
   EXPECT_EQ(relight::percentile({42.0}, 0.95), 42.0);
   EXPECT_THROW(relight::percentile({}, 0.5), std::invalid_argument);
+}
+
+// The progress line estimates the time left at the pace so far, once a
+// twentieth is done and a second has passed.
+TEST(ProgressLine, EstimatesTheTimeLeftFromThePaceSoFar) {
+  EXPECT_NE(progress_line("analysis", 0.25, 10.0).find("~30s left"), std::string::npos)
+      << progress_line("analysis", 0.25, 10.0);
+  EXPECT_NE(progress_line("analysis", 0.1, 20.0).find("~3m00s left"), std::string::npos);
+  EXPECT_NE(progress_line("analysis", 0.5, 4000.0).find("~1h06m left"), std::string::npos);
+  EXPECT_EQ(progress_line("analysis", 0.01, 10.0).find("left"), std::string::npos);  // too early to tell
+  EXPECT_EQ(progress_line("analysis", 0.5, 0.4).find("left"), std::string::npos);
+  EXPECT_EQ(progress_line("analysis", 1.0, 12.0).find("left"), std::string::npos);  // done
+  EXPECT_NE(progress_line("analysis", 0.5, 4.0).find(" 50%    4.0s"), std::string::npos);
 }
 
 TEST(Rng, SameSeedAndStreamGiveTheSameSequence) {

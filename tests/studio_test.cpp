@@ -1272,6 +1272,38 @@ class StudioTest : public QObject {
     QCOMPARE(display_exposure_for(Image(8, 6, Vec3::Zero())), 0.0f);
   }
 
+  // The selected area light's circle, at the middle of the rectangle's side
+  // `up` points to, dragged turns the rectangle about its normal towards the
+  // point dragged to: `up` follows, the aim stays, one undo step.
+  void dragging_an_area_lights_circle_turns_it_about_its_normal() {
+    Light area = document().light(0);
+    area.type = LightType::area;
+    area.direction = Vec3(0, 0, -1);
+    area.up = Vec3(0, 1, 0);
+    area.size = Vec2(1.6f, 1.0f);
+    document().set_light(0, area);
+    window_->select_light(0);
+    GeometryView& view = window_->geometry_view();
+    view.frame_selected();
+    const auto circle = view.project(*view.turn_point(area));
+    QVERIFY(circle.has_value());
+    QVERIFY(shows_colour(view.grab().toImage(), *circle + QPointF(5, 0), light_colour(true, true)));
+    const int steps = window_->undo_stack().count();
+    drag_in_geometry_view(circle->toPoint(), QPoint(40, 0));
+    const Light turned = document().light(0);
+    const float degrees = std::acos(std::clamp(turned.up.normalized().dot(area.up), -1.0f, 1.0f)) * 57.2958f;
+    QVERIFY2(degrees > 5.0f, qPrintable(QString::number(degrees)));
+    QVERIFY(std::abs(turned.up.dot(turned.direction)) < 1e-4f);  // in the rectangle's plane
+    QVERIFY((turned.direction - area.direction).norm() < 1e-6f);
+    QVERIFY((turned.position - area.position).norm() < 1e-6f);
+    // The circle moved the way the cursor did.
+    const auto now = view.project(*view.turn_point(turned));
+    QVERIFY(now.has_value() && now->x() > circle->x() + 5.0);
+    QCOMPARE(window_->undo_stack().count(), steps + 1);
+    window_->undo_stack().undo();
+    QVERIFY((document().light(0).up - area.up).norm() < 1e-6f);
+  }
+
   void export_writes_the_full_size_image() {
     QSignalSpy done(window_.get(), &MainWindow::exportFinished);
     const QString path = folder_.filePath("relit.png");

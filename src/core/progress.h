@@ -10,6 +10,12 @@
 
 namespace relight {
 
+// The line drawn for a stage `fraction` (0..1) done after `elapsed_s`
+// seconds: label, bar, percentage, the time so far and, once a twentieth is
+// done and a second has passed, an estimate of the time left at the pace so
+// far ("~12s left", "~3m10s left").
+std::string progress_line(const std::string& label, double fraction, double elapsed_s);
+
 class Progress {
  public:
   // A reporter that shows nothing and is never cancelled.

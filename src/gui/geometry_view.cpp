@@ -189,6 +189,11 @@ std::optional<QPointF> GeometryView::project(const Vec3& p) const {
   return QPointF(0.5 * width() + e.focal * d.dot(e.right) / z, 0.5 * height() - e.focal * d.dot(e.up) / z);
 }
 
+std::optional<Vec3> GeometryView::turn_point(const Light& light) const {
+  if (light.type != LightType::area) return std::nullopt;
+  return Vec3(light.position + 0.5f * light.size.y() * area_light_sides(light).h);
+}
+
 Vec3 GeometryView::marker_position(const Light& light) const {
   if (light.type != LightType::directional) return light.position;
   return centre_ - 0.45f * scene_size_ * light.direction.normalized();
@@ -289,9 +294,13 @@ void GeometryView::draw_lights(QPainter& painter, std::vector<Label>& labels) co
     painter.drawEllipse(*p, r, r);
     labels.push_back({*p, QString::fromStdString(light.name)});
   }
-  if (selected_ >= 0 && selected_ < document_->light_count())
-    if (const auto aim = aim_point(document_->light(selected_)))
+  if (selected_ >= 0 && selected_ < document_->light_count()) {
+    const Light& light = document_->light(selected_);
+    if (const auto aim = aim_point(light))
       if (const auto q = project(*aim)) draw_aim_handle(painter, *q);
+    if (const auto turn = turn_point(light))
+      if (const auto q = project(*turn)) draw_turn_handle(painter, *q);
+  }
 }
 
 void GeometryView::paintEvent(QPaintEvent*) {
@@ -363,10 +372,8 @@ int GeometryView::light_at(const QPointF& point) const {
   return best;
 }
 
-bool GeometryView::on_aim_handle(const QPointF& point) const {
-  if (selected_ < 0 || selected_ >= document_->light_count()) return false;
-  const auto aim = aim_point(document_->light(selected_));
-  const auto q = aim ? project(*aim) : std::nullopt;
+bool GeometryView::on_handle(const QPointF& point, const std::optional<Vec3>& handle) const {
+  const auto q = handle ? project(*handle) : std::nullopt;
   return q && std::hypot(q->x() - point.x(), q->y() - point.y()) <= kPickRadius;
 }
 
@@ -398,11 +405,15 @@ void GeometryView::mousePressEvent(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton || !document_) return;
   setFocus();
   drag_start_ = event->position();
-  if (on_aim_handle(event->position())) {
-    drag_light_ = document_->light(selected_);
-    drag_aim_ = *aim_point(drag_light_);
-    drag_ = Drag::aim;
-    return;
+  if (selected_ >= 0 && selected_ < document_->light_count()) {
+    const Light& light = document_->light(selected_);
+    for (const auto& [handle, drag] : {std::pair{aim_point(light), Drag::aim}, std::pair{turn_point(light), Drag::turn}})
+      if (on_handle(event->position(), handle)) {
+        drag_light_ = light;
+        drag_handle_ = *handle;
+        drag_ = drag;
+        return;
+      }
   }
   const int hit = light_at(event->position());
   if (hit >= 0) {
@@ -427,8 +438,17 @@ void GeometryView::mouseMoveEvent(QMouseEvent* event) {
     emit lightDragged(selected_, moved);
   } else if (drag_ == Drag::sun && selected_ >= 0) {
     emit lightDragged(selected_, sun_dragged_to(drag_light_, event->position()));
+  } else if (drag_ == Drag::turn && selected_ >= 0) {
+    // The rectangle's h side towards the point dragged to, in its own plane.
+    const Vec3 normal = drag_light_.direction.normalized();
+    const Vec3 to = dragged(drag_handle_, d) - drag_light_.position;
+    const Vec3 in_plane = to - to.dot(normal) * normal;
+    if (in_plane.norm() < 1e-6f) return;
+    Light turned = drag_light_;
+    turned.up = in_plane.normalized();
+    emit lightDragged(selected_, turned);
   } else if (drag_ == Drag::aim && selected_ >= 0) {
-    const Vec3 aim = dragged(drag_aim_, d) - drag_light_.position;
+    const Vec3 aim = dragged(drag_handle_, d) - drag_light_.position;
     if (aim.norm() == 0.0f) return;
     Light aimed = drag_light_;
     aimed.direction = aim.normalized();
@@ -437,7 +457,7 @@ void GeometryView::mouseMoveEvent(QMouseEvent* event) {
 }
 
 void GeometryView::mouseReleaseEvent(QMouseEvent* event) {
-  if ((drag_ == Drag::light || drag_ == Drag::aim || drag_ == Drag::sun) && selected_ >= 0 &&
+  if ((drag_ == Drag::light || drag_ == Drag::aim || drag_ == Drag::turn || drag_ == Drag::sun) && selected_ >= 0 &&
       event->position() != drag_start_)
     emit lightDropped(selected_, drag_light_, document_->light(selected_));
   drag_ = Drag::none;

@@ -5,7 +5,8 @@
 // with QPainter (flat-shaded triangles, back to front), so it needs no
 // OpenGL. Mouse: click a dot to select it, drag it to move the light in the
 // plane facing the view (a sun's: round the scene, turning where it shines
-// from), drag the selected light's aim square to aim it,
+// from), drag the selected light's aim square to aim it and an area light's
+// circle to turn it about its normal,
 // drag elsewhere to orbit, wheel to zoom. Keys
 // (thesis 6.3): arrows move the selected light up/down and sideways,
 // Home/End forwards/backwards in this view's frame, Shift ten times
@@ -68,6 +69,10 @@ class GeometryView : public QWidget {
   // light): where its aim meets the first surface; dragged, it re-aims the
   // light through the point dragged to.
   std::optional<Vec3> aim_point(const Light& light) const;
+  // An area light's turn handle (a circle, drawn for the selected light):
+  // the middle of its rectangle's `h` side that `up` points to; dragged, it
+  // turns the rectangle about its normal towards the point dragged to.
+  std::optional<Vec3> turn_point(const Light& light) const;
 
   QSize sizeHint() const override { return {420, 320}; }
   QSize minimumSizeHint() const override { return {200, 150}; }
@@ -108,7 +113,8 @@ class GeometryView : public QWidget {
   // Each label on a dark box beside its marker (place_labels).
   void draw_labels(QPainter& painter, const std::vector<Label>& labels) const;
   int light_at(const QPointF& point) const;
-  bool on_aim_handle(const QPointF& point) const;  // the selected light's
+  // Whether the widget point is on the selected light's handle at `handle`.
+  bool on_handle(const QPointF& point, const std::optional<Vec3>& handle) const;
   // A point dragged by `by` pixels in the plane through it facing the view.
   Vec3 dragged(const Vec3& start, const QPointF& by) const;
   // A sun whose marker (on a sphere about the centre) is under the widget
@@ -125,11 +131,11 @@ class GeometryView : public QWidget {
   Vec3 seen_centre_ = Vec3::Zero();
   float yaw_deg_ = 0.0f, pitch_deg_ = 35.0f, distance_ = 1.0f;
   QImage mesh_image_;  // the shaded mesh for the current orbit and size
-  enum class Drag { none, orbit, light, aim, sun } drag_ = Drag::none;
+  enum class Drag { none, orbit, light, aim, turn, sun } drag_ = Drag::none;
   QPointF drag_start_;
   float drag_yaw_ = 0.0f, drag_pitch_ = 0.0f;
   Light drag_light_;
-  Vec3 drag_aim_ = Vec3::Zero();  // the aim point where the drag started
+  Vec3 drag_handle_ = Vec3::Zero();  // the aim or turn handle where the drag started
 };
 
 }  // namespace relight::gui

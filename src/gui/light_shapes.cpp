@@ -103,6 +103,12 @@ void draw_aim_handle(QPainter& painter, const QPointF& at) {
   painter.drawRect(QRectF(at - QPointF(kHalf, kHalf), QSizeF(2 * kHalf, 2 * kHalf)));
 }
 
+void draw_turn_handle(QPainter& painter, const QPointF& at) {
+  painter.setPen(QPen(light_colour(true, true), 2.0));
+  painter.setBrush(Qt::NoBrush);
+  painter.drawEllipse(at, 5.0, 5.0);
+}
+
 void draw_polylines(QPainter& painter, const std::vector<Polyline>& lines,
                     const std::function<std::optional<QPointF>(const Vec3&)>& project) {
   for (const Polyline& line : lines) {

@@ -42,6 +42,8 @@ QColor light_colour(bool selected, bool enabled);
 
 // The selected light's aim handle: a square in the selected colour at `at`.
 void draw_aim_handle(QPainter& painter, const QPointF& at);
+// The selected area light's turn handle: a circle in the selected colour.
+void draw_turn_handle(QPainter& painter, const QPointF& at);
 
 // Draws the polylines through `project` (world point to widget point, or
 // nothing behind the eye), leaving out segments with an end not projected.
