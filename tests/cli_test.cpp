@@ -188,6 +188,22 @@ TEST(Cli, RenderRefusesAnAnalysisOfAnotherPhotoSize) {
   EXPECT_FALSE(fs::exists(dir / "out.exr"));
 }
 
+TEST(Cli, RenderRefusesAnAnalysisWithAPhotoExposureNotPositive) {
+  const fs::path dir = temp_folder("bad_exposure");
+  fs::create_directories(dir / "analysis");
+  std::ofstream(dir / "analysis" / "analysis.json")
+      << R"({"strategy":"lights","paths_per_pixel":16,"gbuffer_samples":9,"seed":1,"max_bounces":4,
+             "interreflection":true,"denoise":true,"iterations":1,"width":320,"height":240,
+             "unseen_albedo":[0.5,0.5,0.5],"photo_exposure":[1.2,-0.5,1.0]})";
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(relight_run({"render", (kRoom / "scene.json").string(), "--rig", (kRoom / "rigs" / "evening.json").string(),
+                         "--analysis", (dir / "analysis").string(), "-o", (dir / "out.exr").string()}),
+            2);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("analysis.json: /photo_exposure: expected three positive numbers"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir / "out.exr"));
+}
+
 // relight preview on the 8 x 6 test scene at 16 x 12, 5 steps of its rig's
 // spot around a circle: the first and last frames, and timing.json.
 struct Preview {
