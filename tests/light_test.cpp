@@ -132,13 +132,17 @@ std::vector<Light> string_of_bulbs() {
 
 // ---------------------------------------------------------------- many lights
 
-// Resampling the bulbs (one shadow ray a sample) is unbiased: the mean
-// illumination is the closed form sum P cos / (4 pi^2 d^2) within 1 %.
+// Resampling the bulbs (four shadow rays a sample) is unbiased: the mean
+// illumination is the closed form sum P cos / (4 pi^2 d^2) within 1 %; a
+// sun beside them keeps its own ray and adds E cos / pi.
 TEST(ManyLights, ResampledBulbsGiveTheClosedForm) {
   const std::vector<Light> bulbs = string_of_bulbs();
-  const LitPlane scene(plane_mesh(), bulbs);
+  std::vector<Light> lights = bulbs;
+  const Vec3 towards_sun = Vec3(0.3f, 0.0f, 1.0f).normalized();
+  lights.push_back(sun(-towards_sun, 0.5f));
+  const LitPlane scene(plane_mesh(), lights);
   for (const Vec3& at : {Vec3(0, 0, 0), Vec3(-4.2f, 0.5f, 0), Vec3(3, -1, 0)}) {
-    Eigen::Vector3d expected = Eigen::Vector3d::Zero();
+    Eigen::Vector3d expected = Eigen::Vector3d::Constant(0.5 * towards_sun.z() / kPiD);
     for (const Light& l : bulbs) {
       const Vec3 d = l.position - at;
       const double cos = d.z() / d.norm();
