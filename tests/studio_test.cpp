@@ -154,6 +154,23 @@ class StudioTest : public QObject {
     before_release();
     send(QEvent::MouseButtonRelease, at + by, Qt::NoButton);
   }
+  // Light 0 made a `type` light without radius, 40 % of the way from the
+  // surface the middle of the view shows back towards the camera, aimed at
+  // that surface.
+  Light light_facing_the_middle_of_the_view(LightType type) {
+    const Camera& camera = document().session().view().camera();
+    SurfacePoint hit;
+    [&] {
+      QVERIFY(document().studio_scene().analysed->rays().intersect(
+          camera.position(), camera.ray_direction(0.5f * float(camera.width()), 0.5f * float(camera.height())), hit));
+    }();
+    Light light = document().light(0);
+    light.type = type;
+    light.radius = 0.0f;
+    light.position = hit.position + 0.4f * (camera.position() - hit.position);
+    light.direction = (hit.position - light.position).normalized();
+    return light;
+  }
   // Where light `index`'s dot is in the geometry view.
   QPoint dot_of(int index) {
     GeometryView& view = window_->geometry_view();
@@ -1068,15 +1085,8 @@ class StudioTest : public QObject {
     show_converged_frame();
     PhotoView& view = window_->photo_view();
     const Camera& camera = document().session().view().camera();
-    SurfacePoint hit;
-    QVERIFY(document().studio_scene().analysed->rays().intersect(
-        camera.position(), camera.ray_direction(0.5f * float(camera.width()), 0.5f * float(camera.height())), hit));
-    Light spot = document().light(0);
-    spot.type = LightType::spot;
-    spot.radius = 0.0f;
+    Light spot = light_facing_the_middle_of_the_view(LightType::spot);
     spot.spot_angle_deg = 30.0f;
-    spot.position = hit.position + 0.4f * (camera.position() - hit.position);
-    spot.direction = (hit.position - spot.position).normalized();
     document().set_light(0, spot);
     window_->select_light(0);
     const std::vector<Polyline> lines = light_shape(spot, spot.position, camera.position(),
@@ -1229,6 +1239,47 @@ class StudioTest : public QObject {
     QVERIFY((document().light(0).direction - sun.direction).norm() < 1e-5f);
   }
 
+  // On the photo too, the selected area light's circle turns it about its
+  // normal towards where the cursor's ray meets the rectangle's plane.
+  void dragging_an_area_lights_circle_on_the_photo_turns_it() {
+    show_converged_frame();
+    PhotoView& view = window_->photo_view();
+    const Camera& camera = document().session().view().camera();
+    Light area = light_facing_the_middle_of_the_view(LightType::area);
+    area.size = Vec2(0.8f, 0.5f);
+    area.up = Vec3(0, 0, 1);
+    document().set_light(0, area);
+    window_->select_light(0);
+    const auto circle = camera.project(*turn_handle_point(area));
+    QVERIFY(circle.has_value());
+    const QPoint from = view.widget_position(QPointF(circle->x(), circle->y())).toPoint(), to = from + QPoint(40, 0);
+    QVERIFY(view.rect().contains(from));
+    const int steps = window_->undo_stack().count();
+    QTest::mousePress(&view, Qt::LeftButton, {}, from);
+    QMouseEvent move(QEvent::MouseMove, QPointF(to), view.mapToGlobal(QPointF(to)), Qt::NoButton, Qt::LeftButton, {});
+    QCoreApplication::sendEvent(&view, &move);
+    QTest::mouseRelease(&view, Qt::LeftButton, {}, to);
+    keep_picture("area_turned_on_photo", view);
+    const Light turned = document().light(0);
+    const float degrees = std::acos(std::clamp(turned.up.normalized().dot(area_light_sides(area).h), -1.0f, 1.0f)) *
+                          57.2958f;
+    QVERIFY2(degrees > 5.0f, qPrintable(QString::number(degrees)));
+    QVERIFY((turned.direction - area.direction).norm() < 1e-6f);
+    QVERIFY((turned.position - area.position).norm() < 1e-6f);
+    // The circle now lies on the picture's line from the light's middle
+    // towards where the cursor let go (the plane's point there, seen).
+    const auto now = camera.project(*turn_handle_point(turned)), middle = camera.project(turned.position);
+    QVERIFY(now.has_value() && middle.has_value());
+    const QPointF at = view.widget_position(QPointF(now->x(), now->y()));
+    const QPointF centre = view.widget_position(QPointF(middle->x(), middle->y()));
+    const QPointF a = at - centre, b = QPointF(to) - centre;
+    const double sine = std::abs(a.x() * b.y() - a.y() * b.x()) / (std::hypot(a.x(), a.y()) * std::hypot(b.x(), b.y()));
+    QVERIFY2(sine < 0.05 && a.x() * b.x() + a.y() * b.y() > 0.0, qPrintable(QString::number(sine)));
+    QCOMPARE(window_->undo_stack().count(), steps + 1);
+    window_->undo_stack().undo();
+    QVERIFY((document().light(0).up - area.up).norm() < 1e-6f);
+  }
+
   // View > Show the Geometry Over the Photo draws the model's edges as the
   // camera sees them over the picture, at the G-buffer's edge pixels, and
   // takes them away again.
@@ -1285,7 +1336,7 @@ class StudioTest : public QObject {
     window_->select_light(0);
     GeometryView& view = window_->geometry_view();
     view.frame_selected();
-    const auto circle = view.project(*view.turn_point(area));
+    const auto circle = view.project(*turn_handle_point(area));
     QVERIFY(circle.has_value());
     QVERIFY(shows_colour(view.grab().toImage(), *circle + QPointF(5, 0), light_colour(true, true)));
     const int steps = window_->undo_stack().count();
@@ -1297,7 +1348,7 @@ class StudioTest : public QObject {
     QVERIFY((turned.direction - area.direction).norm() < 1e-6f);
     QVERIFY((turned.position - area.position).norm() < 1e-6f);
     // The circle moved the way the cursor did.
-    const auto now = view.project(*view.turn_point(turned));
+    const auto now = view.project(*turn_handle_point(turned));
     QVERIFY(now.has_value() && now->x() > circle->x() + 5.0);
     QCOMPARE(window_->undo_stack().count(), steps + 1);
     window_->undo_stack().undo();

@@ -189,11 +189,6 @@ std::optional<QPointF> GeometryView::project(const Vec3& p) const {
   return QPointF(0.5 * width() + e.focal * d.dot(e.right) / z, 0.5 * height() - e.focal * d.dot(e.up) / z);
 }
 
-std::optional<Vec3> GeometryView::turn_point(const Light& light) const {
-  if (light.type != LightType::area) return std::nullopt;
-  return Vec3(light.position + 0.5f * light.size.y() * area_light_sides(light).h);
-}
-
 Vec3 GeometryView::marker_position(const Light& light) const {
   if (light.type != LightType::directional) return light.position;
   return centre_ - 0.45f * scene_size_ * light.direction.normalized();
@@ -298,7 +293,7 @@ void GeometryView::draw_lights(QPainter& painter, std::vector<Label>& labels) co
     const Light& light = document_->light(selected_);
     if (const auto aim = aim_point(light))
       if (const auto q = project(*aim)) draw_aim_handle(painter, *q);
-    if (const auto turn = turn_point(light))
+    if (const auto turn = turn_handle_point(light))
       if (const auto q = project(*turn)) draw_turn_handle(painter, *q);
   }
 }
@@ -407,7 +402,7 @@ void GeometryView::mousePressEvent(QMouseEvent* event) {
   drag_start_ = event->position();
   if (selected_ >= 0 && selected_ < document_->light_count()) {
     const Light& light = document_->light(selected_);
-    for (const auto& [handle, drag] : {std::pair{aim_point(light), Drag::aim}, std::pair{turn_point(light), Drag::turn}})
+    for (const auto& [handle, drag] : {std::pair{aim_point(light), Drag::aim}, std::pair{turn_handle_point(light), Drag::turn}})
       if (on_handle(event->position(), handle)) {
         drag_light_ = light;
         drag_handle_ = *handle;
@@ -439,14 +434,7 @@ void GeometryView::mouseMoveEvent(QMouseEvent* event) {
   } else if (drag_ == Drag::sun && selected_ >= 0) {
     emit lightDragged(selected_, sun_dragged_to(drag_light_, event->position()));
   } else if (drag_ == Drag::turn && selected_ >= 0) {
-    // The rectangle's h side towards the point dragged to, in its own plane.
-    const Vec3 normal = drag_light_.direction.normalized();
-    const Vec3 to = dragged(drag_handle_, d) - drag_light_.position;
-    const Vec3 in_plane = to - to.dot(normal) * normal;
-    if (in_plane.norm() < 1e-6f) return;
-    Light turned = drag_light_;
-    turned.up = in_plane.normalized();
-    emit lightDragged(selected_, turned);
+    emit lightDragged(selected_, turned_towards(drag_light_, dragged(drag_handle_, d) - drag_light_.position));
   } else if (drag_ == Drag::aim && selected_ >= 0) {
     const Vec3 aim = dragged(drag_handle_, d) - drag_light_.position;
     if (aim.norm() == 0.0f) return;

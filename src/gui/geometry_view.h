@@ -69,10 +69,6 @@ class GeometryView : public QWidget {
   // light): where its aim meets the first surface; dragged, it re-aims the
   // light through the point dragged to.
   std::optional<Vec3> aim_point(const Light& light) const;
-  // An area light's turn handle (a circle, drawn for the selected light):
-  // the middle of its rectangle's `h` side that `up` points to; dragged, it
-  // turns the rectangle about its normal towards the point dragged to.
-  std::optional<Vec3> turn_point(const Light& light) const;
 
   QSize sizeHint() const override { return {420, 320}; }
   QSize minimumSizeHint() const override { return {200, 150}; }

@@ -109,6 +109,19 @@ void draw_turn_handle(QPainter& painter, const QPointF& at) {
   painter.drawEllipse(at, 5.0, 5.0);
 }
 
+std::optional<Vec3> turn_handle_point(const Light& light) {
+  if (light.type != LightType::area) return std::nullopt;
+  return Vec3(light.position + 0.5f * light.size.y() * area_light_sides(light).h);
+}
+
+Light turned_towards(const Light& light, const Vec3& towards) {
+  const Vec3 normal = light.direction.normalized();
+  const Vec3 in_plane = towards - towards.dot(normal) * normal;
+  Light turned = light;
+  if (in_plane.norm() > 1e-6f * std::max(1.0f, towards.norm())) turned.up = in_plane.normalized();
+  return turned;
+}
+
 void draw_polylines(QPainter& painter, const std::vector<Polyline>& lines,
                     const std::function<std::optional<QPointF>(const Vec3&)>& project) {
   for (const Polyline& line : lines) {

@@ -44,6 +44,13 @@ QColor light_colour(bool selected, bool enabled);
 void draw_aim_handle(QPainter& painter, const QPointF& at);
 // The selected area light's turn handle: a circle in the selected colour.
 void draw_turn_handle(QPainter& painter, const QPointF& at);
+// Where an area light's turn handle is: the middle of its rectangle's `h`
+// side that `up` points to (nothing for the other types).
+std::optional<Vec3> turn_handle_point(const Light& light);
+// The light turned about its normal so that `up` points along `towards`
+// (from the light's position) in the rectangle's plane; as it was where
+// `towards` is along the normal.
+Light turned_towards(const Light& light, const Vec3& towards);
 
 // Draws the polylines through `project` (world point to widget point, or
 // nothing behind the eye), leaving out segments with an end not projected.

@@ -110,6 +110,7 @@ void PhotoView::draw_light_shapes(QPainter& painter) const {
     painter.drawEllipse(*p, kDotRadius, kDotRadius);
   }
   if (const auto aim = aim_handle()) draw_aim_handle(painter, *aim);
+  if (const auto turn = turn_handle()) draw_turn_handle(painter, *turn);
 }
 
 std::optional<QPointF> PhotoView::position_handle() const {
@@ -126,12 +127,19 @@ std::optional<QPointF> PhotoView::aim_handle() const {
   return shown(light.position + aim_reach(*document_, light) * light.direction.normalized());
 }
 
+std::optional<QPointF> PhotoView::turn_handle() const {
+  if (!position_handle()) return std::nullopt;
+  const auto at = turn_handle_point(document_->light(selected_));
+  return at ? shown(*at) : std::nullopt;
+}
+
 PhotoView::Handle PhotoView::handle_at(const QPointF& widget_point) const {
   const auto near = [&](const std::optional<QPointF>& handle) {
     return handle && std::hypot(handle->x() - widget_point.x(), handle->y() - widget_point.y()) <= kHandleRadius;
   };
   if (!shapes_shown_) return Handle::none;
   if (near(aim_handle())) return Handle::aim;
+  if (near(turn_handle())) return Handle::turn;
   return near(position_handle()) ? Handle::position : Handle::none;
 }
 
@@ -246,6 +254,21 @@ void PhotoView::mousePressEvent(QMouseEvent* event) {
 
 void PhotoView::mouseMoveEvent(QMouseEvent* event) {
   if (drag_ == Handle::none || !document_) return;
+  if (drag_ == Handle::turn) {
+    const auto pixel = image_position(event->position());
+    if (!pixel) return;
+    const Camera& camera = document_->session().view().camera();
+    const Vec3 ray = camera.ray_direction(float(pixel->x()), float(pixel->y()));
+    const Light& light = document_->light(selected_);
+    const Vec3 normal = light.direction.normalized();
+    const float along = ray.dot(normal);
+    if (std::abs(along) < 1e-4f) return;  // the ray runs along the rectangle's plane
+    const float t = (light.position - camera.position()).dot(normal) / along;
+    if (t <= 0.0f) return;
+    dragged_ = true;
+    emit lightDragged(selected_, turned_towards(light, camera.position() + t * ray - light.position));
+    return;
+  }
   const auto surface = surface_at(event->position());
   if (!surface) return;
   Light moved = document_->light(selected_);

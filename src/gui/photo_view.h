@@ -8,7 +8,9 @@
 // selected light's dot is a handle: dragged, the light moves across the
 // surface under the cursor, keeping its height above the surface below it;
 // a spot's or area light's aim (the end of its cone, a square) is another:
-// dragged, it aims the light at the surface under the cursor.
+// dragged, it aims the light at the surface under the cursor; an area
+// light's circle turns it about its normal towards where the cursor's ray
+// meets the rectangle's plane.
 #pragma once
 
 #include <QImage>
@@ -77,11 +79,12 @@ class PhotoView : public QWidget {
   QRectF picture_rect() const;  // where the image is drawn: fitted, centred
   void compose();
   void draw_light_shapes(QPainter& painter) const;
-  enum class Handle { none, position, aim };
+  enum class Handle { none, position, aim, turn };
   // The selected light's handle at a widget point, if any, and where they are.
   Handle handle_at(const QPointF& widget_point) const;
   std::optional<QPointF> position_handle() const;
   std::optional<QPointF> aim_handle() const;
+  std::optional<QPointF> turn_handle() const;  // an area light's circle
   std::optional<QPointF> shown(const Vec3& p) const;  // a world point's widget point
   std::optional<Vec3> surface_at(const QPointF& widget_point) const;
   Vec3 world_up() const;
