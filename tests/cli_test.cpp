@@ -172,36 +172,33 @@ TEST(Cli, RadiosityAnalysisIsRecordedAndRendersFrom) {
   EXPECT_TRUE(fs::exists(dir / "evening.exr"));
 }
 
-TEST(Cli, RenderRefusesAnAnalysisOfAnotherPhotoSize) {
-  const fs::path dir = temp_folder("othersize");
+// `relight render` of the room over a hand-written analysis.json (the
+// options, `size` and `extra` keys): exits 2 writing nothing, and returns
+// what it printed.
+std::string render_over_a_bad_analysis(const std::string& name, const std::string& size, const std::string& extra) {
+  const fs::path dir = temp_folder(name);
   fs::create_directories(dir / "analysis");
   std::ofstream(dir / "analysis" / "analysis.json")
       << R"({"strategy":"lights","paths_per_pixel":16,"gbuffer_samples":9,"seed":1,"max_bounces":4,
-             "interreflection":true,"denoise":true,"iterations":1,"width":10,"height":10,
-             "unseen_albedo":[0.5,0.5,0.5]})";
+             "interreflection":true,"denoise":true,"iterations":1,"unseen_albedo":[0.5,0.5,0.5],)"
+      << size << extra << "}";
   testing::internal::CaptureStderr();
   EXPECT_EQ(relight_run({"render", (kRoom / "scene.json").string(), "--rig", (kRoom / "rigs" / "evening.json").string(),
                          "--analysis", (dir / "analysis").string(), "-o", (dir / "out.exr").string()}),
             2);
-  const std::string err = testing::internal::GetCapturedStderr();
-  EXPECT_NE(err.find("another size"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir / "out.exr"));
+  return testing::internal::GetCapturedStderr();
+}
+
+TEST(Cli, RenderRefusesAnAnalysisOfAnotherPhotoSize) {
+  const std::string err = render_over_a_bad_analysis("othersize", R"("width":10,"height":10)", "");
+  EXPECT_NE(err.find("another size"), std::string::npos) << err;
 }
 
 TEST(Cli, RenderRefusesAnAnalysisWithAPhotoExposureNotPositive) {
-  const fs::path dir = temp_folder("bad_exposure");
-  fs::create_directories(dir / "analysis");
-  std::ofstream(dir / "analysis" / "analysis.json")
-      << R"({"strategy":"lights","paths_per_pixel":16,"gbuffer_samples":9,"seed":1,"max_bounces":4,
-             "interreflection":true,"denoise":true,"iterations":1,"width":320,"height":240,
-             "unseen_albedo":[0.5,0.5,0.5],"photo_exposure":[1.2,-0.5,1.0]})";
-  testing::internal::CaptureStderr();
-  EXPECT_EQ(relight_run({"render", (kRoom / "scene.json").string(), "--rig", (kRoom / "rigs" / "evening.json").string(),
-                         "--analysis", (dir / "analysis").string(), "-o", (dir / "out.exr").string()}),
-            2);
-  const std::string err = testing::internal::GetCapturedStderr();
+  const std::string err =
+      render_over_a_bad_analysis("bad_exposure", R"("width":320,"height":240)", R"(,"photo_exposure":[1.2,-0.5,1.0])");
   EXPECT_NE(err.find("analysis.json: /photo_exposure: expected three positive numbers"), std::string::npos) << err;
-  EXPECT_FALSE(fs::exists(dir / "out.exr"));
 }
 
 // relight preview on the 8 x 6 test scene at 16 x 12, 5 steps of its rig's

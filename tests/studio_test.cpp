@@ -154,6 +154,14 @@ class StudioTest : public QObject {
     before_release();
     send(QEvent::MouseButtonRelease, at + by, Qt::NoButton);
   }
+  // Presses the mouse on the photo at `from`, moves it to `to` and lets go.
+  void drag_on_photo(QPoint from, QPoint to) {
+    PhotoView& view = window_->photo_view();
+    QTest::mousePress(&view, Qt::LeftButton, {}, from);
+    QMouseEvent move(QEvent::MouseMove, QPointF(to), view.mapToGlobal(QPointF(to)), Qt::NoButton, Qt::LeftButton, {});
+    QCoreApplication::sendEvent(&view, &move);
+    QTest::mouseRelease(&view, Qt::LeftButton, {}, to);
+  }
   // Light 0 made a `type` light without radius, 40 % of the way from the
   // surface the middle of the view shows back towards the camera, aimed at
   // that surface.
@@ -1121,20 +1129,13 @@ class StudioTest : public QObject {
       }();
       return hit.position;
     };
-    const auto drag = [&](QPoint from, QPoint to) {
-      QTest::mousePress(&view, Qt::LeftButton, {}, from);
-      QMouseEvent move(QEvent::MouseMove, QPointF(to), view.mapToGlobal(QPointF(to)), Qt::NoButton, Qt::LeftButton,
-                       {});
-      QCoreApplication::sendEvent(&view, &move);
-      QTest::mouseRelease(&view, Qt::LeftButton, {}, to);
-    };
     SurfacePoint below;
     QVERIFY(rays.intersect(start.position, -up, below));
     const auto dot = camera.project(start.position);
     QVERIFY(dot.has_value());
     const QPoint from = view.widget_position(QPointF(dot->x(), dot->y())).toPoint();
     const QPoint to = from + QPoint(-80, 60);
-    drag(from, to);
+    drag_on_photo(from, to);
     const Vec3 expected = surface(to) + below.distance * up;
     QVERIFY2((document().light(0).position - expected).norm() < 1e-4f,
              qPrintable(QString("moved %1 m off").arg((document().light(0).position - expected).norm())));
@@ -1152,7 +1153,7 @@ class StudioTest : public QObject {
     QVERIFY(aim.has_value());
     const QPoint aim_from = view.widget_position(QPointF(aim->x(), aim->y())).toPoint();
     const QPoint aim_to = aim_from + QPoint(70, 30);
-    drag(aim_from, aim_to);
+    drag_on_photo(aim_from, aim_to);
     const Vec3 towards = (surface(aim_to) - spot.position).normalized();
     QVERIFY((document().light(0).direction - towards).norm() < 1e-4f);
     QVERIFY((document().light(0).position - spot.position).norm() == 0.0f);  // aimed, not moved
@@ -1255,10 +1256,7 @@ class StudioTest : public QObject {
     const QPoint from = view.widget_position(QPointF(circle->x(), circle->y())).toPoint(), to = from + QPoint(40, 0);
     QVERIFY(view.rect().contains(from));
     const int steps = window_->undo_stack().count();
-    QTest::mousePress(&view, Qt::LeftButton, {}, from);
-    QMouseEvent move(QEvent::MouseMove, QPointF(to), view.mapToGlobal(QPointF(to)), Qt::NoButton, Qt::LeftButton, {});
-    QCoreApplication::sendEvent(&view, &move);
-    QTest::mouseRelease(&view, Qt::LeftButton, {}, to);
+    drag_on_photo(from, to);
     keep_picture("area_turned_on_photo", view);
     const Light turned = document().light(0);
     const float degrees = std::acos(std::clamp(turned.up.normalized().dot(area_light_sides(area).h), -1.0f, 1.0f)) *

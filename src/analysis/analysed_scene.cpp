@@ -1,6 +1,7 @@
 #include "analysis/analysed_scene.h"
 
 #include "analysis/analysis_folder.h"
+#include "analysis/probe_exposure.h"
 #include "analysis/strategy.h"
 
 namespace relight {
@@ -13,8 +14,7 @@ AnalysedScene::AnalysedScene(Scene scene, const AnalysisOptions& gbuffer_options
 void AnalysedScene::set_analysis(Analysis analysis) {
   analysis_ = std::move(analysis);
   // The analysis's units: the photo shows through where no geometry covers it.
-  if (analysis_.photo_exposure != Vec3::Ones())
-    for (Vec3& p : scene_.photo.pixels) p = p.cwiseQuotient(analysis_.photo_exposure);
+  if (analysis_.photo_exposure != Vec3::Ones()) apply_exposure(scene_.photo, analysis_.photo_exposure.cwiseInverse());
   environment_ = strategy_environment(scene_, *rays_, analysis_.options.strategy);
 }
 

@@ -187,7 +187,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   if (const auto exposure = photo_exposure_against_the_probes(scene, rays, gbuffer)) {
     result.photo_exposure = *exposure;
     photo_divided = scene.photo;
-    for (Vec3& p : photo_divided.pixels) p = p.cwiseQuotient(*exposure);
+    apply_exposure(photo_divided, exposure->cwiseInverse());
   }
   const Image& photo = result.photo_exposure != Vec3::Ones() ? photo_divided : scene.photo;
   // Light bounced off what the photo shows is the photo's radiance there;

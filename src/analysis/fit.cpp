@@ -121,10 +121,9 @@ void solve_channel(const Image& photo, std::vector<Basis>& bases, const std::vec
   for (Eigen::Index j = 0; j < n; ++j) bases[unknown[j]].emission[c] = float(std::max(0.0, x[j]));
 }
 
-
 void scale_probe(Probe& probe, const Vec3& factor) {
   probe.scale = probe.scale.cwiseProduct(factor);
-  for (Vec3& pixel : probe.image.pixels) pixel = pixel.cwiseProduct(factor);
+  apply_exposure(probe.image, factor);
 }
 
 // Whether the whole of the light (its disc, rectangle or sun disc: 3 x 3

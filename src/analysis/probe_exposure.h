@@ -35,6 +35,12 @@ inline bool exposure_differs(const Vec3& ratio) {
   return ratio.array().log().abs().maxCoeff() >= std::log(1.0f + kExposureTolerance);
 }
 
+// Every pixel multiplied by `factor`, per channel: an image brought to
+// another exposure (a probe to the photo's, a photo to the probe's).
+inline void apply_exposure(Image& image, const Vec3& factor) {
+  for (Vec3& p : image.pixels) p = p.cwiseProduct(factor);
+}
+
 // Fewer shared points than this fix no exposure.
 constexpr size_t kMinExposurePoints = 100;
 
