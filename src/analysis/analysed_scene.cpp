@@ -6,10 +6,7 @@
 
 namespace relight {
 
-AnalysedScene::AnalysedScene(Scene scene, const AnalysisOptions& gbuffer_options)
-    : scene_(std::move(scene)),
-      rays_(std::make_unique<RayScene>(scene_.mesh)),
-      gbuffer_(std::make_unique<GBuffer>(scene_gbuffer(scene_, *rays_, gbuffer_options))) {}
+AnalysedScene::AnalysedScene(Scene scene) : scene_(std::move(scene)), rays_(std::make_unique<RayScene>(scene_.mesh)) {}
 
 void AnalysedScene::set_analysis(Analysis analysis) {
   analysis_ = std::move(analysis);
@@ -20,15 +17,22 @@ void AnalysedScene::set_analysis(Analysis analysis) {
 
 std::unique_ptr<AnalysedScene> AnalysedScene::from_folder(Scene&& scene, const std::filesystem::path& folder) {
   Analysis analysis = load_analysis(folder, scene);
-  std::unique_ptr<AnalysedScene> s(new AnalysedScene(std::move(scene), analysis.options));
+  if (analysis.registered_camera)
+    scene.camera = Camera(*analysis.registered_camera, scene.camera.width(), scene.camera.height());
+  std::unique_ptr<AnalysedScene> s(new AnalysedScene(std::move(scene)));
+  s->gbuffer_ = std::make_unique<GBuffer>(scene_gbuffer(s->scene_, *s->rays_, analysis.options));
   s->set_analysis(std::move(analysis));
   return s;
 }
 
 std::unique_ptr<AnalysedScene> AnalysedScene::analyse(Scene&& scene, const AnalysisOptions& options, Progress& progress,
                                                       const AlbedoObserver& on_albedo) {
-  std::unique_ptr<AnalysedScene> s(new AnalysedScene(std::move(scene), options));
-  s->set_analysis(analyze(s->scene_, *s->rays_, *s->gbuffer_, options, progress, on_albedo));
+  std::unique_ptr<AnalysedScene> s(new AnalysedScene(std::move(scene)));
+  const std::optional<CameraSpec> registered = camera_for_analysis(s->scene_, *s->rays_, options, progress);
+  s->gbuffer_ = std::make_unique<GBuffer>(scene_gbuffer(s->scene_, *s->rays_, options));
+  Analysis analysis = analyze(s->scene_, *s->rays_, *s->gbuffer_, options, progress, on_albedo);
+  analysis.registered_camera = registered;
+  s->set_analysis(std::move(analysis));
   return s;
 }
 

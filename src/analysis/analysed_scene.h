@@ -5,7 +5,8 @@
 // samples: a later render's noise then follows the analysis's, and an
 // unchanged rig gives the photo back), the analysis, and the environment as
 // the analysis's strategy cleaned it. Built only by the loaders below, so the
-// G-buffer is always the analysis's; never moved (the rays refer to the
+// G-buffer is always the analysis's (through its camera, which is the
+// scene's unless the analysis registered it to the photo); never moved (the rays refer to the
 // scene's mesh).
 #pragma once
 
@@ -39,7 +40,7 @@ class AnalysedScene {
   const Environment& environment() const { return environment_; }
 
  private:
-  AnalysedScene(Scene scene, const AnalysisOptions& gbuffer_options);
+  explicit AnalysedScene(Scene scene);  // the G-buffer follows, through the analysis's camera
   void set_analysis(Analysis analysis);
 
   Scene scene_;

@@ -12,6 +12,7 @@
 #include "io/input_file.h"
 #include "io/json_reader.h"
 #include "io/response_curve.h"
+#include "io/scene_io.h"
 
 namespace relight {
 
@@ -60,6 +61,7 @@ void write_options(nlohmann::json& j, const AnalysisOptions& o) {
   j["bounce_source"] = to_string(o.bounce_source);
   j["denoise"] = o.denoise;
   if (o.align_edges) j["align_edges"] = true;
+  if (o.keep_camera) j["keep_camera"] = true;
   if (o.method == AnalysisMethod::radiosity) {
     j["node_samples"] = o.node_samples;
     j["gather_rays"] = o.gather_rays;
@@ -91,6 +93,7 @@ AnalysisOptions read_options(const JsonReader& r, const nlohmann::json& j) {
   o.bounce_source = named("bounce_source", "albedo", parse_bounce_source);
   o.denoise = r.boolean(r.required(j, "", "denoise"), "/denoise");
   if (const nlohmann::json* v = r.optional(j, "align_edges")) o.align_edges = r.boolean(*v, "/align_edges");
+  if (const nlohmann::json* v = r.optional(j, "keep_camera")) o.keep_camera = r.boolean(*v, "/keep_camera");
   if (o.method == AnalysisMethod::radiosity) {
     o.node_samples = count("node_samples");
     o.gather_rays = count("gather_rays");
@@ -122,6 +125,7 @@ std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& optio
   // existed stay valid.
   if (options.bounce_source == BounceSource::photo) hash.add_text(" bounce-source photo");
   if (options.align_edges) hash.add_text(" align-edges");  // likewise
+  if (options.keep_camera) hash.add_text(" keep-camera");  // likewise
   // Added only for radiosity, so that path analyses made before the method
   // existed stay valid.
   if (options.method == AnalysisMethod::radiosity)
@@ -160,6 +164,7 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   j["unseen_albedo"] = {a.albedo.mean.x(), a.albedo.mean.y(), a.albedo.mean.z()};
   if (a.photo_exposure != Vec3::Ones())
     j["photo_exposure"] = {a.photo_exposure.x(), a.photo_exposure.y(), a.photo_exposure.z()};
+  if (a.registered_camera) j["camera"] = camera_to_json(*a.registered_camera);
   j["filled_pixels"] = a.albedo.filled;
   nlohmann::json triangles = nlohmann::json::array();
   for (const TriangleAlbedo& t : a.albedo.unseen_triangles)
@@ -187,6 +192,7 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
     if (!(a.photo_exposure.minCoeff() > 0.0f) || !a.photo_exposure.allFinite())
       r.fail("/photo_exposure", "expected three positive numbers");
   }
+  if (const nlohmann::json* camera = r.optional(j, "camera")) a.registered_camera = camera_from_json(r, *camera, "/camera");
   if (const nlohmann::json* triangles = r.optional(j, "unseen_triangles")) {
     if (!triangles->is_array()) r.fail("/unseen_triangles", "expected an array");
     for (size_t k = 0; k < triangles->size(); ++k) {

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "analysis/camera_registration.h"
 #include "analysis/illumination_alignment.h"
 #include "analysis/photo_radiance.h"
 #include "analysis/probe_exposure.h"
@@ -12,6 +13,12 @@
 namespace relight {
 
 namespace fs = std::filesystem;
+
+std::optional<CameraSpec> camera_for_analysis(Scene& scene, const RayScene& rays, const AnalysisOptions& options,
+                                              Progress& progress) {
+  if (options.keep_camera) return std::nullopt;
+  return register_when_off(scene, rays, progress);
+}
 
 GBuffer scene_gbuffer(const Scene& scene, const RayScene& rays, const AnalysisOptions& options) {
   return GBuffer(scene.camera, rays, options.gbuffer_samples, options.seed, scene.path.string());

@@ -51,6 +51,9 @@ struct AnalysisOptions {
   // Divide by the illumination with its edges moved onto the photo's
   // (IlluminationAlignment); off: they are only found and reported.
   bool align_edges = false;
+  // Analyse through the scene's camera as given; otherwise registered to the
+  // photo where it is visibly off (register_when_off, camera_registration.h).
+  bool keep_camera = false;
   // With method radiosity, per node (paths_per_pixel is the path tracer's):
   int node_samples = 64;  // for the light from the lights and the environment
   int gather_rays = 256;  // for the light from the other surfaces
@@ -79,7 +82,17 @@ struct Analysis {
   // found to differ from 1: the analysis divided photo / this, and the
   // albedo and every re-lit image are in the probes' units (the lights').
   Vec3 photo_exposure = Vec3::Ones();
+  // The camera the analysis saw the scene through where it is not the
+  // scene's: registered to the photo (register_when_off). Every render of
+  // the analysis takes it.
+  std::optional<CameraSpec> registered_camera;
 };
+
+// The camera an analysis with `options` sees `scene` through: registered
+// to the photo where it is visibly off and the options allow (the scene's
+// camera is then set to it, and it is returned).
+std::optional<CameraSpec> camera_for_analysis(Scene& scene, const RayScene& rays, const AnalysisOptions& options,
+                                              Progress& progress);
 
 // Renders what the scene's camera sees (the G-buffer) with the options' seed
 // and sub-pixel samples: the same for the analysis and every later render.

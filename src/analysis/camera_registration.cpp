@@ -263,6 +263,26 @@ Vec2 RegistrationResult::principal_point_shift_px(int width, int height) const {
 
 float RegistrationResult::moved_m() const { return (after.position - before.position).norm(); }
 
+std::string RegistrationResult::what_moved(int width, int height) const {
+  const Vec2 shift = principal_point_shift_px(width, height);
+  return fmt::format(
+      "turned {:.3g} degrees, moved {:.3g} cm, vfov {:.4g} -> {:.4g} degrees ({:+.2f} %), principal point shifted "
+      "{:+.2f} {:+.2f} px",
+      turned_deg(), 100.0f * moved_m(), before.vfov_deg, after.vfov_deg, 100.0f * fov_change(), shift.x(), shift.y());
+}
+
+float view_difference_px(const CameraSpec& a, const CameraSpec& b, int width, int height) {
+  const Camera ca(a, width, height), cb(b, width, height);
+  float most = 0.0f;
+  for (int i = 0; i <= 8; ++i)
+    for (int j = 0; j <= 8; ++j) {
+      const Vec2 pixel(width * i / 8.0f, height * j / 8.0f);
+      const auto seen = cb.project(cb.position() + ca.ray_direction(pixel.x(), pixel.y()));
+      most = std::max(most, seen ? (*seen - pixel).norm() : float(width));
+    }
+  return most;
+}
+
 double edge_mismatch(const Scene& scene, const RayScene& rays, const Camera& camera) {
   const std::vector<EdgeField> full = edge_pyramid(scene.photo, 1);
   return mismatch_px(geometry_edges(camera, rays, scene.path.string()), camera, full.front());
@@ -274,7 +294,7 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
   const std::vector<EdgeField> fields = edge_pyramid(scene.photo, int(std::size(kLevels)));
   // Fewer than a row's worth of edge pixels: nothing to register by.
   if (fields.front().edge_pixels() < size_t(scene.photo.width))
-    throw InputError(
+    throw TooFewEdges(
         file, "/photo",
         fmt::format("only {} edge pixels: too few to register the camera by", fields.front().edge_pixels()));
 
@@ -282,7 +302,7 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
   result.before = scene.camera.spec();
   std::vector<Vec3> points = geometry_edges(scene.camera, rays, file);
   if (points.size() < 50)
-    throw InputError(
+    throw TooFewEdges(
         file, "/camera",
         fmt::format("the geometry shows only {} edge pixels: too few to register the camera by", points.size()));
   result.mismatch_before_px = mismatch_px(points, scene.camera, fields.front());
@@ -316,6 +336,38 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
   check_range(result, scene, options);
   scene.camera = camera;
   return result;
+}
+
+}  // namespace relight
+
+namespace relight {
+
+std::optional<CameraSpec> register_when_off(Scene& scene, const RayScene& rays, Progress& progress) {
+  const int w = scene.camera.width(), h = scene.camera.height();
+  RegistrationResult r;
+  try {
+    r = register_camera(scene, rays, RegistrationOptions{}, progress);
+  } catch (const TooFewEdges& e) {
+    spdlog::info("camera: not checked against the photo: {}", e.message());
+    return std::nullopt;
+  } catch (const InputError& e) {
+    spdlog::warn("{}: the camera is kept as given: {}", scene.path.string(), e.what());
+    return std::nullopt;
+  }
+  const float off_px = view_difference_px(r.before, r.after, w, h);
+  if (off_px <= kVisiblyOffPx) {
+    scene.camera = Camera(r.before, w, h);
+    spdlog::info("camera: the photo's edges meet the geometry's (edge mismatch {:.2f} px; a registered camera would "
+                 "see {:.2f} px from it): kept as given",
+                 r.mismatch_before_px, off_px);
+    return std::nullopt;
+  }
+  spdlog::warn(
+      "{}: the camera was off the photo by up to {:.1f} px (edge mismatch {:.2f} -> {:.2f} px): registered for this "
+      "analysis, {}. analysis.json keeps it and every render of the analysis uses it; `relight register` writes it "
+      "into a scene, --keep-camera keeps the given one",
+      scene.path.string(), off_px, r.mismatch_before_px, r.mismatch_after_px, r.what_moved(w, h));
+  return r.after;
 }
 
 }  // namespace relight

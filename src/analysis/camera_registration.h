@@ -13,8 +13,10 @@
 // is refused: a wrong match is reported, not "fixed".
 #pragma once
 
+#include <optional>
 #include <string>
 
+#include "core/error.h"
 #include "core/progress.h"
 #include "render/ray_scene.h"
 #include "scene/scene.h"
@@ -47,6 +49,20 @@ struct RegistrationResult {
   float fov_change() const;  // fraction of the given vfov_deg, signed
   Vec2 principal_point_shift_px(int width, int height) const;
   float moved_m() const;
+  // "turned 0.25 degrees, moved 0.3 cm, vfov 58 -> 58.1 degrees (+0.17 %),
+  // principal point shifted +0.00 +0.00 px"
+  std::string what_moved(int width, int height) const;
+};
+
+// The largest distance (pixels), over a 9 x 9 grid on a photo of width x
+// height, between where the two cameras show the same direction: how far
+// apart what their pixels see is.
+float view_difference_px(const CameraSpec& a, const CameraSpec& b, int width, int height);
+
+// The photo or the geometry shows too few edges to register the camera by.
+class TooFewEdges : public InputError {
+ public:
+  using InputError::InputError;
 };
 
 // The mean capped distance (full-resolution pixels) of the geometry's edges
@@ -54,11 +70,23 @@ struct RegistrationResult {
 double edge_mismatch(const Scene& scene, const RayScene& rays, const Camera& camera);
 
 // Registers scene.camera to scene.photo and sets it; where no camera
-// matches better than the given one, it stays (after == before). Throws InputError
-// (scene file, "/camera") when the photo shows too few edges to register by,
-// or when the best match lies outside the options' range (the camera is then
-// left as it was).
+// matches better than the given one, it stays (after == before). Throws
+// TooFewEdges when the photo or the geometry shows too few edges to register
+// by, InputError (scene file, "/camera") when the best match lies outside the
+// options' range; the camera is then left as it was.
 RegistrationResult register_camera(Scene& scene, const RayScene& rays, const RegistrationOptions& options,
                                    Progress& progress);
+
+// relight analyze's look at the camera: registered as above, and kept when
+// it shows the photo more than kVisiblyOffPx from where the given camera
+// does (registration itself comes within 0.1-1.1 px of the true camera on the
+// reference scenes, docs/benchmarks.md: less is within its noise), with
+// a warning that says what moved. The scene's camera is then the registered
+// one, and that is returned. Where the photo or the geometry has too few
+// edges, or registration would move further than its range (a wrong match,
+// or a camera off by more than registration reaches), the camera stays as
+// given, with a warning for the latter.
+constexpr float kVisiblyOffPx = 1.5f;
+std::optional<CameraSpec> register_when_off(Scene& scene, const RayScene& rays, Progress& progress);
 
 }  // namespace relight

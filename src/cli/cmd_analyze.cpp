@@ -28,7 +28,7 @@ struct AnalyzeArgs {
 
 void run_analyze(const AnalyzeArgs& args, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  LoadedScene s = load_for_analysis(args.scene, args.options, progress);
+  LoadedScene s = load_for_analysis(args.scene, args.options, progress, CameraUse::for_analysis);
   warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
   AnalysisOptions options = args.options;
   options.strategy = args.strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args.strategy);
@@ -38,8 +38,9 @@ void run_analyze(const AnalyzeArgs& args, Progress& progress) {
   options.direct_per_pixel = args.direct_light == "pixels";
   std::vector<Image> renders;  // albedo_coverage of each render, with --save-renders
   const auto keep = [&](int, const AlbedoImages& albedo) { renders.push_back(albedo.albedo_coverage); };
-  const Analysis analysis =
+  Analysis analysis =
       analyze(s.scene, *s.rays, *s.gbuffer, options, progress, args.save_renders ? AlbedoObserver(keep) : nullptr);
+  analysis.registered_camera = s.registered_camera;
   warn_about_albedo_above_one(s.scene.path.string(), *s.gbuffer, analysis.albedo.albedo, analysis.albedo.mean,
                               "the scene's lighting");
   OutputBatch folder;  // the renders appear with the analysis
@@ -100,6 +101,10 @@ void add_analyze_command(CLI::App& app, Action& action) {
                 "divide the photo by an illumination whose edges (shadows, silhouettes) are moved onto the photo's "
                 "where the camera is a few pixels off: no edge lines under a rig that replaces the lights, but a "
                 "rig that keeps them shows theirs; `relight register` is the remedy for both");
+  cmd->add_flag("--keep-camera", args->options.keep_camera,
+                "analyse through the scene's camera as given; by default a camera whose view of the geometry is "
+                "visibly off the photo's edges (by over 1.5 px) is registered to them first, as `relight register` does, "
+                "and analysis.json keeps it for every render");
   cmd->add_flag("--save-renders", args->save_renders,
                 "also write the albedo each render recovered, albedo_render1.exr (white surfaces), "
                 "albedo_render2.exr, ... (to follow the interreflection iteration)");

@@ -15,8 +15,6 @@ namespace fs = std::filesystem;
 RegistrationResult register_and_report(Scene& scene, const RayScene& rays, const RegistrationOptions& options,
                                        Progress& progress) {
   const RegistrationResult r = register_camera(scene, rays, options, progress);
-  const int w = scene.camera.width(), h = scene.camera.height();
-  const Vec2 shift = r.principal_point_shift_px(w, h);
   if (r.mismatch_after_px >= r.mismatch_before_px) {
     std::printf(
         "camera unchanged: no camera near it matches the photo's edges better (edge mismatch %.3f px); if it "
@@ -24,11 +22,7 @@ RegistrationResult register_and_report(Scene& scene, const RayScene& rays, const
         r.mismatch_before_px);
     return r;
   }
-  std::printf(
-      "camera turned %.3g degrees, moved %.3g cm, vfov %.4g -> %.4g degrees (%+.2f %%), principal point "
-      "shifted %+.2f %+.2f px\n",
-      r.turned_deg(), 100.0f * r.moved_m(), r.before.vfov_deg, r.after.vfov_deg, 100.0f * r.fov_change(), shift.x(),
-      shift.y());
+  std::printf("camera %s\n", r.what_moved(scene.camera.width(), scene.camera.height()).c_str());
   std::printf(
       "edge mismatch %.3f -> %.3f px (mean distance of %zu geometry edge pixels to the photo's edges, capped "
       "at 8 px)\n",

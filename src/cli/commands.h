@@ -40,13 +40,18 @@ void add_probe_from_photo_command(CLI::App& app, Action& action);
 
 // A scene to analyse, fit or register: loaded, with its ray-tracing
 // structure and the G-buffer `options` make (a scene with its analysis, to
-// relight: AnalysedScene).
+// relight: AnalysedScene). With CameraUse::for_analysis, the camera is
+// first registered to the photo where off and options allow
+// (camera_for_analysis, analyze.h).
+enum class CameraUse { as_given, for_analysis };
 struct LoadedScene {
   Scene scene;
   std::unique_ptr<RayScene> rays;
   std::unique_ptr<GBuffer> gbuffer;
+  std::optional<CameraSpec> registered_camera;
 };
-LoadedScene load_for_analysis(const std::string& scene_path, const AnalysisOptions& options, const Progress& progress);
+LoadedScene load_for_analysis(const std::string& scene_path, const AnalysisOptions& options, Progress& progress,
+                              CameraUse camera = CameraUse::as_given);
 // Logs what scene_path holds: photo size, triangles, lights, probes.
 void log_scene(const Scene& scene, const std::string& scene_path);
 

@@ -64,11 +64,13 @@ void log_scene(const Scene& scene, const std::string& scene_path) {
                scene.mesh.triangles.size(), scene.lights.size(), scene.probes.size());
 }
 
-LoadedScene load_for_analysis(const std::string& scene_path, const AnalysisOptions& options, const Progress& progress) {
+LoadedScene load_for_analysis(const std::string& scene_path, const AnalysisOptions& options, Progress& progress,
+                              CameraUse camera) {
   LoadedScene s;
   s.scene = load_scene(scene_path, progress);
   log_scene(s.scene, scene_path);
   s.rays = std::make_unique<RayScene>(s.scene.mesh);
+  if (camera == CameraUse::for_analysis) s.registered_camera = camera_for_analysis(s.scene, *s.rays, options, progress);
   s.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s.scene, *s.rays, options));
   return s;
 }

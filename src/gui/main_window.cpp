@@ -349,11 +349,14 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   select_light(document_->light_count() > 0 ? 0 : -1);
   remember(kRecentScenes, scene_path);
   if (!rig_path_.isEmpty()) remember(kRecentRigs, rig_path_);
-  statusBar()->showMessage(
+  QString opened =
       scene_->from_cache
           ? tr("Analysis read from %1").arg(QString::fromStdString(scene_->analysis_folder.filename().string()))
-          : tr("Scene analysed; the analysis is kept next to the scene for next time"),
-      8000);
+          : tr("Scene analysed; the analysis is kept next to the scene for next time");
+  if (scene_->analysed->analysis().registered_camera)
+    opened += tr(". The camera was off the photo: the analysis sees through it registered to the photo's edges "
+                 "(Ctrl+G shows the geometry over the photo)");
+  statusBar()->showMessage(opened, 8000);
   if (!document_->session().backend_note().empty())
     statusBar()->showMessage(QString::fromStdString(document_->session().backend_note()), 8000);
   geometry_view().setFocus();

@@ -126,20 +126,8 @@ class GeometryContents {
   std::optional<GltfCamerasAndLights> contents_;
 };
 
-CameraSpec parse_camera(const JsonReader& r, const json& v, GeometryContents& geometry) {
-  const std::string ptr = "/camera";
-  r.expect_object(v, ptr);
-  CameraSpec c;
-  if (auto* name = r.optional(v, "from_geometry")) {
-    const std::string key = ptr + "/from_geometry";
-    c = find_gltf_camera(geometry.path(), geometry.get(key), r.string(*name, key));
-  } else {
-    c.position = r.vec3(r.required(v, ptr, "position"), ptr + "/position");
-    c.look_at = r.vec3(r.required(v, ptr, "look_at"), ptr + "/look_at");
-    c.up = r.direction(r.required(v, ptr, "up"), ptr + "/up");
-    c.vfov_deg = r.number(r.required(v, ptr, "vfov_deg"), ptr + "/vfov_deg", 0.0f, 179.0f);
-    if (c.vfov_deg <= 0.0f) r.fail(ptr + "/vfov_deg", "expected a field of view in (0, 179] degrees");
-  }
+// What a camera block holds besides where it is: checked and read into c.
+void read_camera_checks_and_extras(const JsonReader& r, const json& v, const std::string& ptr, CameraSpec& c) {
   const Vec3 forward = c.look_at - c.position;
   if (forward.norm() < 1e-6f) r.fail(ptr + "/look_at", "must differ from the camera position");
   if (forward.normalized().cross(c.up).norm() < 1e-4f) r.fail(ptr + "/up", "must not be parallel to the view direction");
@@ -151,6 +139,15 @@ CameraSpec parse_camera(const JsonReader& r, const json& v, GeometryContents& ge
   }
   if (auto* aspect = r.optional(v, "aspect")) c.aspect = r.number(*aspect, ptr + "/aspect", 1e-3f, 1e3f);
   r.warn_unknown_keys(v, ptr, {"position", "look_at", "up", "vfov_deg", "principal_point", "from_geometry", "aspect"});
+}
+
+CameraSpec parse_camera(const JsonReader& r, const json& v, GeometryContents& geometry) {
+  const std::string ptr = "/camera";
+  r.expect_object(v, ptr);
+  if (!r.optional(v, "from_geometry")) return camera_from_json(r, v, ptr);
+  const std::string key = ptr + "/from_geometry";
+  CameraSpec c = find_gltf_camera(geometry.path(), geometry.get(key), r.string(*r.optional(v, "from_geometry"), key));
+  read_camera_checks_and_extras(r, v, ptr, c);
   return c;
 }
 
@@ -351,6 +348,18 @@ void check_photo_aspect(const fs::path& photo_path, const Image& photo, const Ca
 }
 
 }  // namespace
+
+CameraSpec camera_from_json(const JsonReader& r, const nlohmann::json& v, const std::string& ptr) {
+  r.expect_object(v, ptr);
+  CameraSpec c;
+  c.position = r.vec3(r.required(v, ptr, "position"), ptr + "/position");
+  c.look_at = r.vec3(r.required(v, ptr, "look_at"), ptr + "/look_at");
+  c.up = r.direction(r.required(v, ptr, "up"), ptr + "/up");
+  c.vfov_deg = r.number(r.required(v, ptr, "vfov_deg"), ptr + "/vfov_deg", 0.0f, 179.0f);
+  if (c.vfov_deg <= 0.0f) r.fail(ptr + "/vfov_deg", "expected a field of view in (0, 179] degrees");
+  read_camera_checks_and_extras(r, v, ptr, c);
+  return c;
+}
 
 nlohmann::json camera_to_json(const CameraSpec& c) {
   json j = {{"position", v3(c.position)}, {"look_at", v3(c.look_at)}, {"up", v3(c.up)}, {"vfov_deg", c.vfov_deg}};

@@ -11,6 +11,8 @@
 
 namespace relight {
 
+class JsonReader;
+
 // Reads scene.json with its photo, geometry and probes. Throws InputError
 // naming the file, the JSON pointer and what was expected; Cancelled where
 // `progress` is cancelled while the geometry is read.
@@ -28,8 +30,11 @@ RigEnvironment load_environment_image(const std::filesystem::path& path);
 // relative to `folder` (the folder the scene.json will be in).
 std::string scene_to_json(const Scene& scene, const std::filesystem::path& folder);
 
-// The `camera` block of scene.json (principal_point only where off centre).
+// The `camera` block of scene.json (principal_point only where off centre),
+// and read back from where `ptr` (a JSON pointer) names it: InputError
+// naming r's file and the key where it is malformed.
 nlohmann::json camera_to_json(const CameraSpec& camera);
+CameraSpec camera_from_json(const JsonReader& r, const nlohmann::json& v, const std::string& ptr);
 
 // The rig as rig.json text, an environment image's path relative to `folder`
 // (the folder the rig.json will be in), and written atomically.
