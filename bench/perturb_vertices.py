@@ -3,12 +3,13 @@
 offset of at most R metres (uniform in the ball; shared vertices move
 together), file paths made absolute, as docs/benchmarks.md's "Vertices moved".
   bench/perturb_vertices.py SCENE.json OUT/scene.json R [SEED]"""
-import json, math, os, random, sys
+import json, os, random, sys
+
+from scene_json import load_absolute
 scene, out, radius = sys.argv[1], sys.argv[2], float(sys.argv[3])
 random.seed(int(sys.argv[4]) if len(sys.argv) > 4 else 1)
-folder = os.path.dirname(os.path.abspath(scene))
-s = json.load(open(scene))
-geo = os.path.join(folder, s["geometry"])
+s = load_absolute(scene)
+geo = s["geometry"]
 out_dir = os.path.dirname(os.path.abspath(out))
 os.makedirs(out_dir, exist_ok=True)
 moved = os.path.join(out_dir, "moved_" + os.path.basename(geo))
@@ -24,6 +25,4 @@ with open(geo) as f, open(moved, "w") as g:
         else:
             g.write(line)
 s["geometry"] = moved
-s["photo"] = os.path.join(folder, s["photo"])
-for p in s.get("probes", []): p["image"] = os.path.join(folder, p["image"])
 json.dump(s, open(out, "w"), indent=1)
