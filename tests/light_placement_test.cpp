@@ -46,7 +46,7 @@ std::vector<Placed> place(const std::vector<Light>& truths, const std::vector<Li
           .surface;
   scene.lights = givens;
   const std::vector<PlacedLight> placed =
-      refine_light_placement(scene, rays, gbuffer, illumination, PlacementOptions{}, Progress::silent());
+      refine_light_placement(scene, rays, gbuffer, illumination, own_emission, PlacementOptions{}, Progress::silent());
   EXPECT_EQ(placed.size(), truths.size());
 
   std::vector<Placed> result;

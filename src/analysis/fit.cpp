@@ -143,21 +143,34 @@ bool probe_sees_light(const RayScene& rays, const Probe& probe, const Light& lig
   return true;
 }
 
-// The emission of each light as the probes measure it (mean over the probes
-// that see it, unoccluded).
-std::optional<Vec3> emission_seen_by_probes(const RayScene& rays, const std::vector<Probe>& probes,
-                                            const Light& light) {
-  Vec3 sum = Vec3::Zero();
-  int n = 0;
+// Where the probes see a light: each probe that sees it unoccluded, and the
+// light's region in it.
+struct ProbeSighting {
+  const Probe* probe;
+  LightInProbe seen;
+};
+std::vector<ProbeSighting> probe_sightings(const RayScene& rays, const std::vector<Probe>& probes,
+                                           const Light& light) {
+  std::vector<ProbeSighting> sightings;
   for (const Probe& probe : probes) {
     if (!probe_sees_light(rays, probe, light)) {
       spdlog::warn("{}: the geometry hides light \"{}\" from this probe's position: the light is not measured from it",
                    probe.path, light.name);
       continue;
     }
-    if (const auto seen = locate_light_in_probe(probe, light))
-      if (const auto e = emission_from_probe(probe, light, *seen)) sum += *e, ++n;
+    if (auto seen = locate_light_in_probe(probe, light)) sightings.push_back({&probe, std::move(*seen)});
   }
+  return sightings;
+}
+
+// The emission that gives what the probes saw (their mean) with the light
+// where `light` has it: a lamp placed farther from the probe must be brighter
+// to deliver the same irradiance there.
+std::optional<Vec3> emission_from_sightings(const std::vector<ProbeSighting>& sightings, const Light& light) {
+  Vec3 sum = Vec3::Zero();
+  int n = 0;
+  for (const ProbeSighting& s : sightings)
+    if (const auto e = emission_from_probe(*s.probe, light, s.seen)) sum += *e, ++n;
   if (n == 0) return std::nullopt;
   return Vec3(sum / float(n));
 }
@@ -189,11 +202,15 @@ class LightingFit {
       Basis b;
       b.emission = light.emission();
       FittedLight report{light.name, light.emission(), light.emission(), "shadows"};
-      if (const auto seen = emission_seen_by_probes(rays, light_probes_, light)) {
+      std::vector<ProbeSighting> sightings = probe_sightings(rays, light_probes_, light);
+      if (const auto seen = emission_from_sightings(sightings, light)) {
         b.known = true;
         b.emission = *seen;
         report.source = "probe";
+      } else {
+        sightings.clear();
       }
+      sightings_.push_back(std::move(sightings));
       light_index_.push_back(i);
       bases_.push_back(std::move(b));
       result.lights.push_back(report);
@@ -242,8 +259,17 @@ class LightingFit {
     const AlbedoImages albedo =
         recover_albedo(scene_.photo, scene_.photo_clipped,
                        IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
-    bounce_albedo_ = albedo.albedo;
-    unseen_ = albedo.mean;
+    // The albedo overshoots and undershoots in turn (too little bounce light
+    // makes it too bright, which makes too much): after the first round, the
+    // next bounces off the mean of the last two, as the analysis does.
+    if (number == 1) {
+      bounce_albedo_ = albedo.albedo;
+      unseen_ = albedo.mean;
+    } else {
+      for (size_t i = 0; i < bounce_albedo_.size(); ++i)
+        bounce_albedo_.pixels[i] = 0.5f * (bounce_albedo_.pixels[i] + albedo.albedo.pixels[i]);
+      unseen_ = 0.5f * (unseen_ + albedo.mean);
+    }
   }
 
   // The photo's exposure and white balance from the surfaces of known albedo
@@ -335,6 +361,21 @@ class LightingFit {
     result.scene.background = result.background_after = bases_[background_].emission;
   }
 
+  // The emission scene light `index` has placed as `placed` (light_placement.h).
+  Vec3 emission_when_placed(size_t index, const Light& placed) const {
+    const auto k = std::find(light_index_.begin(), light_index_.end(), index) - light_index_.begin();
+    if (size_t(k) < sightings_.size())
+      if (const auto e = emission_from_sightings(sightings_[size_t(k)], placed)) return *e;
+    return placed.emission();
+  }
+
+  // The lights the probes measured, their emission where they were placed.
+  void follow_placement() {
+    for (size_t k = 0; k < light_index_.size(); ++k)
+      if (const auto e = emission_from_sightings(sightings_[k], result.scene.lights[light_index_[k]]))
+        bases_[k].emission = *e;
+  }
+
   // The illumination of the lighting fitted so far.
   Image illumination() const {
     Image sum(gbuffer_.width(), gbuffer_.height());
@@ -358,6 +399,7 @@ class LightingFit {
   std::vector<Probe> distant_;       // the probes without the modelled geometry (those that see past it)
   std::vector<Probe> light_probes_;  // each probe, without the geometry where it sees past it
   std::vector<size_t> light_index_;  // basis k is result.scene.lights[light_index_[k]]
+  std::vector<std::vector<ProbeSighting>> sightings_;  // basis k's light in the probes (none: not measured)
   std::vector<Basis> bases_;
   size_t background_ = 0;  // the background's basis
   Image bounce_albedo_;    // the last round's albedo (at first: white)
@@ -385,8 +427,12 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
   // Lights moved to where their shadows fall, then their emission fitted
   // again: a shadow edge in the wrong place misleads the edge equations.
   if (options.refine_placement) {
-    fit.result.placement =
-        refine_light_placement(fit.result.scene, rays, gbuffer, fit.illumination(), options.placement, progress);
+    const EmissionOfPlaced emission_of = [&fit](size_t index, const Light& placed) {
+      return fit.emission_when_placed(index, placed);
+    };
+    fit.result.placement = refine_light_placement(fit.result.scene, rays, gbuffer, fit.illumination(), emission_of,
+                                                  options.placement, progress);
+    fit.follow_placement();
     fit.round(options.rounds + 1);
     fit.check_background_against_probes();
     fit.publish();

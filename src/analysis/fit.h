@@ -25,7 +25,8 @@
 // radiance by over a factor of two), the background is the probes' mean
 // radiance (without lights and geometry).
 // Each round's bounce light uses the albedo recovered with the lighting
-// fitted in the round before (the first: white surfaces).
+// fitted before (the first: white surfaces; then the mean of the last two
+// rounds' albedos, which overshoot and undershoot in turn in a closed room).
 // 3. Optionally, the lights are then moved to where their shadows fall
 //    (light_placement.h) and their emission fitted once more.
 #pragma once
@@ -42,7 +43,7 @@ struct FitOptions {
   int paths_per_pixel = 32;
   uint64_t seed = 1;
   int max_bounces = IntegratorOptions::kMaxBounces;
-  int rounds = 3;
+  int rounds = 4;
   bool refine_placement = false;
   PlacementOptions placement;
 };

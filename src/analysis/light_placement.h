@@ -17,6 +17,7 @@
 // the others are judged by.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,7 @@ namespace relight {
 
 struct PlacementOptions {
   int evaluations_per_dimension = 80;  // per light: 3 dimensions for a point, 2 for a sun, 5 for a spot or area
-  int light_samples = 4;               // per pixel, for lights with a size (fixed samples: a smooth objective)
+  int light_samples = 4;              // per pixel, for lights with a size (fixed samples: a smooth objective)
   // The first step of the search (it ends at 1/64 of it): how far off the
   // given placement may be.
   float position_step = 0.25f;      // m (point, spot, area)
@@ -48,11 +49,17 @@ struct PlacedLight {
   float turned_deg() const;
 };
 
+// The emission scene.lights[index] has when placed as `placed`: a light a
+// probe measured delivers what the probe saw wherever it is tried (a lamp
+// farther from the probe is brighter), one given by the user keeps its own.
+using EmissionOfPlaced = std::function<Vec3(size_t index, const Light& placed)>;
+inline Vec3 own_emission(size_t, const Light& placed) { return placed.emission(); }
+
 // Moves (and turns) the enabled lights of `scene` to where their shadows and
 // a spot's cone best match the photo. `illumination`: the illumination
 // (white surfaces, bounce light included) of the scene's lighting as it is.
 std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
-                                                const Image& illumination, const PlacementOptions& options,
-                                                Progress& progress);
+                                                const Image& illumination, const EmissionOfPlaced& emission_of,
+                                                const PlacementOptions& options, Progress& progress);
 
 }  // namespace relight

@@ -57,6 +57,7 @@ Vec3 channel_median(std::vector<Vec3> values) {
 
 constexpr float kSearchDeg = 10.0f;  // how far the real light may be from where the user put it
 constexpr float kStandOut = 4.0f;    // a light pixel is this many times brighter than its surroundings
+constexpr float kHalf = 0.5f;        // of the brightest pixel: the light's own pixels
 
 }  // namespace
 
@@ -67,13 +68,20 @@ std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Ligh
   const Image& img = probe.image;
   const ProbeFrame frame(probe.forward, probe.up);
 
-  // 1. The brightest pixel within the search cone around the expected direction.
+  // 1. The brightest pixel within the search cone around the expected
+  //    direction, and the middle of the pixels at least half as bright: a
+  //    panel is evenly bright, and its brightest pixel, anywhere on it (a
+  //    ceiling panel seen from below measured 30 % low around its corner).
   const PixelDirections search = pixels_within(probe, expected, std::cos(radians(kSearchDeg) + radius));
   if (search.index.empty()) return std::nullopt;
   size_t best = 0;
   for (size_t i = 1; i < search.index.size(); ++i)
     if (luminance(img.pixels[search.index[i]]) > luminance(img.pixels[search.index[best]])) best = i;
-  Vec3 centre = search.direction[best];
+  const float brightest = luminance(img.pixels[search.index[best]]);
+  Vec3 bright_sum = Vec3::Zero();
+  for (size_t i = 0; i < search.index.size(); ++i)
+    if (luminance(img.pixels[search.index[i]]) >= kHalf * brightest) bright_sum += search.direction[i];
+  const Vec3 centre = bright_sum.normalized();
 
   // 2. The region: the light's angular radius plus a margin for the probe's
   //    blur (three pixels) and the user's estimate (one degree).
@@ -89,7 +97,7 @@ std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Ligh
 
   LightInProbe seen;
   seen.surround = channel_median(std::move(ring));
-  if (luminance(img.pixels[search.index[best]]) < kStandOut * luminance(seen.surround) + 1e-6f) return std::nullopt;
+  if (brightest < kStandOut * luminance(seen.surround) + 1e-6f) return std::nullopt;
   seen.pixels = region.index;
   seen.irradiance = Vec3::Zero();
   Vec3 weighted_direction = Vec3::Zero();

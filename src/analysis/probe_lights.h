@@ -22,8 +22,9 @@ struct LightInProbe {
 };
 
 // The light's region in the probe: pixels within its angular radius plus a
-// margin around the brightest spot near its expected direction. Nothing when
-// the light is not visible there (no pixel stands out from its surroundings).
+// margin around the middle of the brightest spot near its expected
+// direction. Nothing when the light is not visible there (no pixel stands
+// out from its surroundings).
 std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Light& light);
 
 // The probe with every enabled light's region replaced by its surroundings.
