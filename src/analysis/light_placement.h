@@ -6,15 +6,16 @@
 // light (which moves with the light) and the rest (background, bounce light:
 // smooth, and taken as fixed while a light moves). For a candidate placement
 // the direct light is re-rendered with shadow rays, and the objective compares
-// the photo's log ratio with the illumination's over pixel pairs on one plane
-// a gap apart: where both show the same shadow edge the ratios cancel. The
-// per-pair penalty has a dead zone (noise, faint texture) and a cap (a texture
-// edge costs the same wherever the shadows are). A wide gap first (a basin of
-// attraction as wide as the gap, where a 1-pixel gap sees only shadows already
-// within a pixel of the truth), then a narrow one; coordinate search on the
-// lights' positions (point, spot, area) and directions (sun, spot, area), all
-// the lights together: a light still misplaced leaves its fringes in what
-// the others are judged by.
+// the photo's log ratio with the illumination's, per colour channel, over
+// pixel pairs on one plane a gap apart: where both show the same shadow edge
+// the ratios cancel. The per-pair penalty is capped (a texture edge costs the
+// same wherever the shadows are). A wide gap first (a basin of attraction as
+// wide as the gap, where a 1-pixel gap sees only shadows already within a
+// pixel of the truth), then a narrow one; coordinate search on the lights'
+// positions (point, spot, area) and directions (sun, spot, area), all the
+// lights together: a light still misplaced leaves its fringes in what the
+// others are judged by. The lights move only where the mismatch falls by
+// more than its noise (two standard errors).
 #pragma once
 
 #include <functional>
