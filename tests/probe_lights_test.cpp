@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "analysis/probe_cleanup.h"
 #include "io/scene_io.h"
@@ -55,6 +56,78 @@ TEST(ProbeLights, MeasuresAKnownLampsPowerAndDirection) {
   ASSERT_TRUE(emission);
   EXPECT_NEAR(emission->x(), 100.0f, 5.0f);
   EXPECT_NEAR(seen->surround.x(), 0.3f, 1e-4f);
+}
+
+// A 512x256 equirect probe at the origin of a uniform environment with an
+// area light's rectangle (radiance P / (4 w h), one-sided) where `panel` has
+// it; one pixel of the rectangle, near a corner, a little brighter than the
+// rest, as a rendered or photographed panel's noise makes some pixel.
+Probe probe_with_panel(const Light& panel, const Vec3& environment) {
+  Probe p;
+  p.image = Image(512, 256, environment);
+  const ProbeFrame frame(p.forward, p.up);
+  const AreaLightSides sides = area_light_sides(panel);
+  const Vec3 n = panel.direction.normalized();
+  const float radiance = panel.power / (4.0f * panel.size.x() * panel.size.y());
+  Vec2 corner(0, 0);
+  float nearest = std::numeric_limits<float>::max();
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 512; ++x) {
+      int inside = 0;
+      for (int s = 0; s < 16; ++s) {
+        const Vec2 uv((x + (s % 4 + 0.5f) / 4) / 512, (y + (s / 4 + 0.5f) / 4) / 256);
+        const Vec3 d = *probe_uv_to_direction(ProbeMapping::equirect, frame, uv);
+        if (d.dot(n) >= 0.0f) continue;  // the light's back, or parallel
+        const Vec3 hit = d * (panel.position.dot(n) / d.dot(n)) - panel.position;
+        const float a = hit.dot(sides.w), b = hit.dot(sides.h);
+        if (std::abs(a) > 0.5f * panel.size.x() || std::abs(b) > 0.5f * panel.size.y()) continue;
+        ++inside;
+        const float to_corner = Vec2(0.5f * panel.size.x() - a, 0.5f * panel.size.y() - b).norm();
+        if (to_corner < nearest) nearest = to_corner, corner = Vec2(float(x), float(y));
+      }
+      p.image.at(x, y) += Vec3::Constant(radiance * inside / 16.0f);
+    }
+  p.image.at(int(corner.x()), int(corner.y())) *= 1.01f;
+  return p;
+}
+
+TEST(ProbeLights, MeasuresAnEvenlyBrightPanelWhole) {
+  Light panel;
+  panel.type = LightType::area;
+  panel.position = Vec3(0.2f, 0.3f, 1.1f);  // overhead, facing down, as a ceiling panel
+  panel.direction = Vec3(0, 0, -1);
+  panel.up = Vec3(0, 1, 0);
+  panel.size = Vec2(1.0f, 0.6f);
+  panel.power = 300.0f;
+  const Probe probe = probe_with_panel(panel, Vec3::Constant(0.3f));
+  Light guess = panel;
+  guess.position += Vec3(0.1f, 0.05f, 0.0f);  // the user's estimate is a little off
+  const auto seen = locate_light_in_probe(probe, guess);
+  ASSERT_TRUE(seen);
+  const auto emission = emission_from_probe(probe, panel, *seen);
+  ASSERT_TRUE(emission);
+  EXPECT_NEAR(emission->x(), 300.0f, 9.0f);  // 3 %
+}
+
+TEST(ProbeLights, TwoLampsSideBySideAreMeasuredApart) {
+  // 10 degrees apart: each within the other's search cone, but not its region.
+  const Vec3 a = 2.0f * Vec3(std::sin(radians(-5.0f)), std::cos(radians(-5.0f)), 0.0f);
+  const Vec3 b = 2.0f * Vec3(std::sin(radians(5.0f)), std::cos(radians(5.0f)), 0.0f);
+  Probe probe = probe_with_lamp(a, 0.05f, 100.0f, Vec3::Constant(0.3f));
+  const Probe other = probe_with_lamp(b, 0.05f, 100.0f, Vec3::Zero());
+  for (size_t i = 0; i < probe.image.size(); ++i) probe.image.pixels[i] += other.image.pixels[i];
+  for (const Vec3& lamp : {a, b}) {
+    Light light;
+    light.position = lamp;
+    light.radius = 0.05f;
+    light.power = 30.0f;
+    const auto seen = locate_light_in_probe(probe, light);
+    ASSERT_TRUE(seen);
+    EXPECT_LT(std::acos(std::min(1.0f, seen->direction.dot(lamp.normalized()))), radians(0.5f));
+    const auto emission = emission_from_probe(probe, light, *seen);
+    ASSERT_TRUE(emission);
+    EXPECT_NEAR(emission->x(), 100.0f, 5.0f);
+  }
 }
 
 TEST(ProbeLights, RemovalLeavesOnlyTheEnvironment) {

@@ -32,7 +32,7 @@ namespace relight {
 
 struct PlacementOptions {
   int evaluations_per_dimension = 80;  // per light: 3 dimensions for a point, 2 for a sun, 5 for a spot or area
-  int light_samples = 4;              // per pixel, for lights with a size (fixed samples: a smooth objective)
+  int light_samples = 4;               // per pixel, for lights with a size (fixed samples: a smooth objective)
   // The first step of the search (it ends at 1/64 of it): how far off the
   // given placement may be.
   float position_step = 0.25f;      // m (point, spot, area)

@@ -66,28 +66,46 @@ std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Ligh
   float radius;
   if (!light.enabled || !expected_direction(light, probe.position, expected, radius)) return std::nullopt;
   const Image& img = probe.image;
-  const ProbeFrame frame(probe.forward, probe.up);
 
-  // 1. The brightest pixel within the search cone around the expected
-  //    direction, and the middle of the pixels at least half as bright: a
-  //    panel is evenly bright, and its brightest pixel, anywhere on it (a
-  //    ceiling panel seen from below measured 30 % low around its corner).
+  // 1. The light's bright spot: of the pixels in the search cone around the
+  //    expected direction at least half as bright as its brightest, the one
+  //    nearest that direction (another lamp a few degrees away may be as
+  //    bright); then the middle, by solid angle, of the pixels near it at
+  //    least half as bright as the brightest of them. A panel is evenly
+  //    bright, and its brightest pixel anywhere on it: centred there, a
+  //    ceiling panel seen from below measured 30 % low. "Near": within twice
+  //    the region's radius, the whole light from any point of it.
   const PixelDirections search = pixels_within(probe, expected, std::cos(radians(kSearchDeg) + radius));
   if (search.index.empty()) return std::nullopt;
-  size_t best = 0;
-  for (size_t i = 1; i < search.index.size(); ++i)
-    if (luminance(img.pixels[search.index[i]]) > luminance(img.pixels[search.index[best]])) best = i;
-  const float brightest = luminance(img.pixels[search.index[best]]);
+  const auto brightness = [&](size_t i) { return luminance(img.pixels[search.index[i]]); };
+  float search_brightest = 0.0f;
+  for (size_t i = 0; i < search.index.size(); ++i) search_brightest = std::max(search_brightest, brightness(i));
+  size_t seed = 0;
+  for (size_t i = 0; i < search.index.size(); ++i)
+    if (brightness(i) >= kHalf * search_brightest &&
+        (brightness(seed) < kHalf * search_brightest ||
+         search.direction[i].dot(expected) > search.direction[seed].dot(expected)))
+      seed = i;
+  const auto solid_angle = [&](size_t pixel) {
+    const int x = int(pixel % img.width), y = int(pixel / img.width);
+    return probe_pixel_solid_angle(probe.mapping, Vec2((x + 0.5f) / img.width, (y + 0.5f) / img.height), img.width,
+                                   img.height);
+  };
+  // The region's radius: the light's angular radius plus a margin for the
+  // probe's blur (three pixels) and the user's estimate (one degree).
+  const float cone = radius + 3.0f * std::sqrt(solid_angle(search.index[seed])) + radians(1.0f);
+  const float cos_near = std::cos(std::min(kPi, 2.0f * cone));
+  const auto near_seed = [&](size_t i) { return search.direction[i].dot(search.direction[seed]) >= cos_near; };
+  float brightest = 0.0f;
+  for (size_t i = 0; i < search.index.size(); ++i)
+    if (near_seed(i)) brightest = std::max(brightest, brightness(i));
   Vec3 bright_sum = Vec3::Zero();
   for (size_t i = 0; i < search.index.size(); ++i)
-    if (luminance(img.pixels[search.index[i]]) >= kHalf * brightest) bright_sum += search.direction[i];
+    if (near_seed(i) && brightness(i) >= kHalf * brightest)
+      bright_sum += solid_angle(search.index[i]) * search.direction[i];
   const Vec3 centre = bright_sum.normalized();
 
-  // 2. The region: the light's angular radius plus a margin for the probe's
-  //    blur (three pixels) and the user's estimate (one degree).
-  const Vec2 uv = probe_direction_to_uv(probe.mapping, frame, centre);
-  const float pixel_angle = std::sqrt(probe_pixel_solid_angle(probe.mapping, uv, img.width, img.height));
-  const float cone = radius + 3.0f * pixel_angle + radians(1.0f);
+  // 2. The region around the centre, and the ring around it.
   const PixelDirections region = pixels_within(probe, centre, std::cos(cone));
   const PixelDirections outer = pixels_within(probe, centre, std::cos(std::min(kPi, 2.0f * cone)));
   std::vector<Vec3> ring;
@@ -103,10 +121,7 @@ std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Ligh
   Vec3 weighted_direction = Vec3::Zero();
   for (size_t i = 0; i < region.index.size(); ++i) {
     const size_t p = region.index[i];
-    const int x = int(p % img.width), y = int(p / img.width);
-    const float sr = probe_pixel_solid_angle(probe.mapping, Vec2((x + 0.5f) / img.width, (y + 0.5f) / img.height),
-                                             img.width, img.height);
-    const Vec3 excess = (img.pixels[p] - seen.surround).cwiseMax(0.0f) * sr;
+    const Vec3 excess = (img.pixels[p] - seen.surround).cwiseMax(0.0f) * solid_angle(p);
     seen.irradiance += excess;
     weighted_direction += luminance(excess) * region.direction[i];
   }
