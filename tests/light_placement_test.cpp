@@ -36,17 +36,17 @@ std::vector<Placed> place(const std::vector<Light>& truths, const std::vector<Li
   scene.photo =
       synthesize_photo(gbuffer, scene.camera, Integrator(rays, lighting, &albedo), albedo, 64, 3, Progress::silent());
 
-  // The illumination of the lighting as given (white surfaces, the bounce
-  // light of the known albedo, as the fit recovers it).
+  // The illumination of the lighting as given less its lights' direct light
+  // (white surfaces, the bounce light of the known albedo, as the fit
+  // recovers it).
   lighting.lights = givens;
   IlluminationOptions options;
   options.paths_per_pixel = 16;
-  const Image illumination =
-      render_illumination(gbuffer, scene.camera, Integrator(rays, lighting, &albedo), options, Progress::silent())
-          .surface;
+  const Image indirect =
+      render_illumination_parts(gbuffer, Integrator(rays, lighting, &albedo), options, Progress::silent()).indirect;
   scene.lights = givens;
   const std::vector<PlacedLight> placed =
-      refine_light_placement(scene, rays, gbuffer, illumination, own_emission, PlacementOptions{}, Progress::silent());
+      refine_light_placement(scene, rays, gbuffer, indirect, own_emission, PlacementOptions{}, Progress::silent());
   EXPECT_EQ(placed.size(), truths.size());
 
   std::vector<Placed> result;

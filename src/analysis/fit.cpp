@@ -21,19 +21,20 @@ namespace {
 // One unknown or known term of the illumination: an image at unit emission.
 struct Basis {
   Image image;
+  Image indirect;  // the part of image that is not straight from the lights (environment, bounce light)
   bool known = false;
   Vec3 emission = Vec3::Zero();  // the known value, or the current estimate
 };
 
-Image render_basis(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, Lighting lighting,
-                   const SurfaceAlbedo& bounce, const FitOptions& options, Progress& progress) {
+IlluminationParts render_basis(const RayScene& rays, const GBuffer& gbuffer, Lighting lighting,
+                               const SurfaceAlbedo& bounce, const FitOptions& options, Progress& progress) {
   IntegratorOptions integrator_options;
   integrator_options.max_bounces = options.max_bounces;
   const Integrator integrator(rays, lighting, &bounce, integrator_options);
   IlluminationOptions illumination;
   illumination.paths_per_pixel = options.paths_per_pixel;
   illumination.seed = options.seed;
-  return render_illumination(gbuffer, scene.camera, integrator, illumination, progress, "fit: light transport").surface;
+  return render_illumination_parts(gbuffer, integrator, illumination, progress, "fit: light transport");
 }
 
 struct PixelPair {
@@ -226,7 +227,7 @@ class LightingFit {
             scene.path.string(), result.lights.front().name);
     }
     background_ = bases_.size();
-    bases_.push_back(Basis{Image(), false, scene.background});
+    bases_.push_back(Basis{Image(), Image(), false, scene.background});
   }
 
   // Renders the bases with the lights where result.scene has them, solves the
@@ -236,11 +237,11 @@ class LightingFit {
     for (size_t k = 0; k < light_index_.size(); ++k) {
       Lighting lighting;
       lighting.lights = {unit_light(result.scene.lights[light_index_[k]])};
-      bases_[k].image = render(lighting, bounce);
+      render(bases_[k], lighting, bounce);
     }
     Lighting sky;
     sky.environment = Environment::constant(Vec3::Ones());
-    bases_[background_].image = render(sky, bounce);
+    render(bases_[background_], sky, bounce);
 
     const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer_, bases_, background_, scene_.photo_clipped);
     result.edge_pairs = pairs.size();
@@ -377,18 +378,27 @@ class LightingFit {
   }
 
   // The illumination of the lighting fitted so far.
-  Image illumination() const {
-    Image sum(gbuffer_.width(), gbuffer_.height());
-    for (size_t i = 0; i < sum.size(); ++i)
-      for (const auto& b : bases_) sum.pixels[i] += b.image.pixels[i].cwiseProduct(b.emission);
-    return sum;
-  }
+  Image illumination() const { return weighted_sum(&Basis::image); }
+  // Its part not straight from the lights: the environment and bounce light.
+  Image indirect_illumination() const { return weighted_sum(&Basis::indirect); }
 
   FitResult result;
 
  private:
-  Image render(const Lighting& lighting, const SurfaceAlbedo& bounce) {
-    return render_basis(scene_, rays_, gbuffer_, lighting, bounce, options_, progress_);
+  void render(Basis& basis, const Lighting& lighting, const SurfaceAlbedo& bounce) {
+    IlluminationParts parts = render_basis(rays_, gbuffer_, lighting, bounce, options_, progress_);
+    basis.image = Image(gbuffer_.width(), gbuffer_.height());
+    for (size_t i = 0; i < basis.image.size(); ++i)
+      basis.image.pixels[i] = parts.direct.pixels[i] + parts.indirect.pixels[i];
+    basis.indirect = std::move(parts.indirect);
+  }
+
+  // The sum over the bases of their part `image`, each at its emission.
+  Image weighted_sum(Image Basis::*image) const {
+    Image sum(gbuffer_.width(), gbuffer_.height());
+    for (size_t i = 0; i < sum.size(); ++i)
+      for (const auto& b : bases_) sum.pixels[i] += (b.*image).pixels[i].cwiseProduct(b.emission);
+    return sum;
   }
 
   const Scene& scene_;
@@ -426,16 +436,38 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
 
   // Lights moved to where their shadows fall, then their emission fitted
   // again: a shadow edge in the wrong place misleads the edge equations.
+  // The bounce light is held fixed while the lights move, as it was where
+  // they were given: once they have moved, it is rendered again from where
+  // they are, and they are placed once more against it.
   if (options.refine_placement) {
     const EmissionOfPlaced emission_of = [&fit](size_t index, const Light& placed) {
       return fit.emission_when_placed(index, placed);
     };
-    fit.result.placement = refine_light_placement(fit.result.scene, rays, gbuffer, fit.illumination(), emission_of,
-                                                  options.placement, progress);
-    fit.follow_placement();
-    fit.round(options.rounds + 1);
-    fit.check_background_against_probes();
-    fit.publish();
+    constexpr int kPlacementPasses = 2;
+    for (int pass = 0; pass < kPlacementPasses; ++pass) {
+      std::vector<PlacedLight> placed = refine_light_placement(fit.result.scene, rays, gbuffer,
+                                                               fit.indirect_illumination(), emission_of,
+                                                               options.placement, progress);
+      const bool moved = std::any_of(placed.begin(), placed.end(), [](const PlacedLight& p) {
+        return p.moved_m() > 0.0f || p.turned_deg() > 0.0f;
+      });
+      if (pass > 0 && !moved) break;
+      if (pass == 0) {
+        fit.result.placement = std::move(placed);
+      } else {
+        for (size_t k = 0; k < placed.size(); ++k) {
+          PlacedLight& total = fit.result.placement[k];
+          total.position_after = placed[k].position_after;
+          total.direction_after = placed[k].direction_after;
+          total.objective_after = placed[k].objective_after;
+        }
+      }
+      fit.follow_placement();
+      fit.round(options.rounds + 1 + pass);
+      fit.check_background_against_probes();
+      fit.publish();
+      if (!moved) break;
+    }
   }
   fit.apply_reference();
   fit.publish();

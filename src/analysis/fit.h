@@ -28,7 +28,8 @@
 // fitted before (the first: white surfaces; then the mean of the last two
 // rounds' albedos, which overshoot and undershoot in turn in a closed room).
 // 3. Optionally, the lights are then moved to where their shadows fall
-//    (light_placement.h) and their emission fitted once more.
+//    (light_placement.h) and their emission fitted once more; where they
+//    moved, once more against the bounce light from where they now are.
 #pragma once
 
 #include <string>

@@ -237,11 +237,10 @@ float PlacedLight::moved_m() const { return (position_after - position_before).n
 float PlacedLight::turned_deg() const { return angle_degrees(direction_before, direction_after); }
 
 std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
-                                                const Image& illumination, const EmissionOfPlaced& emission_of,
+                                                const Image& indirect, const EmissionOfPlaced& emission_of,
                                                 const PlacementOptions& options, Progress& progress) {
   const PixelSurfaces surfaces = PixelSurfaces::central_samples(gbuffer);
   const Colours& photo = scene.photo.pixels;
-  const Colours& total = illumination.pixels;
 
   std::vector<size_t> enabled;
   for (size_t i = 0; i < scene.lights.size(); ++i)
@@ -252,6 +251,9 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
   const auto direct_of = [&](size_t k, const Light& light) {
     DirectLightSettings settings;
     settings.light_samples = LightSampler(light).needs_random() ? options.light_samples : 1;
+    // A soft light's falloff exact, noise only in its penumbrae: noise left in
+    // the rest at the given place would hold the light there.
+    settings.exact_unshadowed = true;
     Image unit;
     render_direct_light(surfaces, rays, unit_light(light), settings, unit);
     const Vec3 emission = emission_of(enabled[k], light);
@@ -261,12 +263,6 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
   };
   std::vector<Colours> direct;
   for (size_t k = 0; k < enabled.size(); ++k) direct.push_back(direct_of(k, scene.lights[enabled[k]]));
-
-  // What does not move with the lights: the illumination less their direct light.
-  Colours rest = total;
-  for (const auto& d : direct)
-    for (size_t i = 0; i < rest.size(); ++i) rest[i] -= d[i];
-  for (Vec3& r : rest) r = r.cwiseMax(0.0f);
 
   struct Level {
     int gap;
@@ -278,7 +274,7 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
 
   std::vector<LightPlacement> searched;
   for (const size_t i : enabled) searched.emplace_back(scene.lights[i], rays, options);
-  Placements placements(searched, direct, rest, direct_of);
+  Placements placements(searched, direct, indirect.pixels, direct_of);
   const Placements start = placements;
   int dimensions = 0;
   for (const auto& l : searched) dimensions += l.dimensions();

@@ -4,7 +4,10 @@
 //
 // The illumination of the fitted lighting splits into each light's direct
 // light (which moves with the light) and the rest (background, bounce light:
-// smooth, and taken as fixed while a light moves). For a candidate placement
+// smooth, and taken as fixed while a light moves). The rest comes from the
+// path tracer's own split, not as the illumination less a shadow-ray render:
+// that difference held the noise of the given place's penumbrae, which
+// pinned a soft light there. For a candidate placement
 // the direct light is re-rendered with shadow rays, and the objective compares
 // the photo's log ratio with the illumination's, per colour channel, over
 // pixel pairs on one plane a gap apart: where both show the same shadow edge
@@ -57,10 +60,11 @@ using EmissionOfPlaced = std::function<Vec3(size_t index, const Light& placed)>;
 inline Vec3 own_emission(size_t, const Light& placed) { return placed.emission(); }
 
 // Moves (and turns) the enabled lights of `scene` to where their shadows and
-// a spot's cone best match the photo. `illumination`: the illumination
-// (white surfaces, bounce light included) of the scene's lighting as it is.
+// a spot's cone best match the photo. `indirect`: the illumination (white
+// surfaces) of the scene's lighting as it is, less the light straight from
+// the lights: the environment and the bounce light, held fixed.
 std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
-                                                const Image& illumination, const EmissionOfPlaced& emission_of,
+                                                const Image& indirect, const EmissionOfPlaced& emission_of,
                                                 const PlacementOptions& options, Progress& progress);
 
 }  // namespace relight

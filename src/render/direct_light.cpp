@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <cmath>
 #include <optional>
 
 #include "core/sampling.h"
@@ -41,6 +42,11 @@ namespace {
 struct RowRays {
   std::vector<int> samples;  // per pixel: surface samples x light samples
   std::vector<Vec3> sum;
+  // Per pixel, for DirectLightSettings::exact_unshadowed: the samples'
+  // irradiance, blocked or not, and the exact unshadowed irradiance summed
+  // over the surface samples.
+  std::vector<Vec3> offered, exact;
+  std::vector<int> surfaces;
   ShadowPacket packet;
   Vec3 irradiance[ShadowPacket::kCapacity];  // unoccluded, of each ray's light sample
   int column[ShadowPacket::kCapacity];
@@ -66,6 +72,12 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
   // A light without extent gives the same sample whatever the random numbers.
   const bool random = sampler.needs_random();
   const int light_samples = random ? std::max(1, settings.light_samples) : 1;
+  const bool ratio = settings.exact_unshadowed && light.type == LightType::area;
+  // The ratio's bias grows with the spread of its sums: its samples are
+  // stratified over the rectangle, a strata x strata grid of cells (where
+  // the samples make a square number).
+  const int grid = int(std::lround(std::sqrt(float(light_samples))));
+  const int strata = ratio && grid * grid == light_samples ? grid : 1;
   std::atomic<bool> stopped{false};
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     thread_local RowRays row;
@@ -76,6 +88,11 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
       }
       row.samples.assign(size_t(width), 0);
       row.sum.assign(size_t(width), Vec3::Zero());
+      if (ratio) {
+        row.offered.assign(size_t(width), Vec3::Zero());
+        row.exact.assign(size_t(width), Vec3::Zero());
+        row.surfaces.assign(size_t(width), 0);
+      }
       for (int x = 0; x < width; ++x) {
         const size_t pixel = size_t(y) * width + x;
         std::optional<Rng> rng;
@@ -83,11 +100,18 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
         for (int k = 0; k < samples_per_pixel; ++k) {
           const SurfacePoint* p = surface_at(pixel, k);
           if (!p) continue;
+          if (ratio) {
+            row.exact[size_t(x)] += area_light_irradiance(light, p->position, p->normal);
+            ++row.surfaces[size_t(x)];
+          }
           for (int j = 0; j < light_samples; ++j) {
             ++row.samples[size_t(x)];
-            const Vec2 u = random ? rng->uniform2() : Vec2(0.5f, 0.5f);
+            Vec2 u = random ? rng->uniform2() : Vec2(0.5f, 0.5f);
+            if (strata > 1) u = (Vec2(float(j % strata), float(j / strata)) + u) / float(strata);
             const LightSample s = sampler.sample(p->position, p->normal, u);
-            if (s.irradiance.isZero() || s.direction.dot(p->geometric_normal) <= 0.0f) continue;
+            if (s.irradiance.isZero()) continue;
+            if (ratio) row.offered[size_t(x)] += s.irradiance;
+            if (s.direction.dot(p->geometric_normal) <= 0.0f) continue;  // below the facet: blocked
             const int slot = row.packet.add(scene.shadow_ray(*p, s.direction, s.distance));
             row.irradiance[slot] = s.irradiance;
             row.column[slot] = x;
@@ -97,8 +121,15 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
       }
       if (row.packet.size()) row.trace(scene);
       for (int x = 0; x < width; ++x) {
-        const int n = row.samples[size_t(x)];
-        out.at(x, y) = n ? Vec3(row.sum[size_t(x)] * (kInvPi / float(n))) : Vec3::Zero();
+        const size_t i = size_t(x);
+        if (ratio) {
+          const float offered = row.offered[i].sum();
+          out.at(x, y) = offered > 0.0f ? Vec3(row.exact[i] * (row.sum[i].sum() / offered * kInvPi / float(row.surfaces[i])))
+                                        : Vec3::Zero();
+        } else {
+          const int n = row.samples[i];
+          out.at(x, y) = n ? Vec3(row.sum[i] * (kInvPi / float(n))) : Vec3::Zero();
+        }
       }
     }
   });

@@ -96,9 +96,9 @@ Image render_background(const GBuffer& gbuffer, const Camera& camera, const Inte
   return out;
 }
 
-IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
-                                       const IlluminationOptions& options, Progress& progress,
-                                       const std::string& label) {
+IlluminationParts render_illumination_parts(const GBuffer& gbuffer, const Integrator& integrator,
+                                            const IlluminationOptions& options, Progress& progress,
+                                            const std::string& label) {
   PixelSums r = trace_pixels(gbuffer, integrator, nullptr, options.paths_per_pixel, options.seed, progress, label);
   if (options.denoise) {
     DenoiseOptions indirect_options;
@@ -114,8 +114,15 @@ IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& cam
     if (!all_zero(r.direct))
       r.direct = denoise_illumination(r.direct, std::move(r.direct_variance), gbuffer, direct_options);
   }
+  return {std::move(r.direct), std::move(r.indirect)};
+}
+
+IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
+                                       const IlluminationOptions& options, Progress& progress,
+                                       const std::string& label) {
+  const IlluminationParts parts = render_illumination_parts(gbuffer, integrator, options, progress, label);
   IlluminationImages out{Image(gbuffer.width(), gbuffer.height()), render_background(gbuffer, camera, integrator)};
-  for (size_t i = 0; i < out.surface.size(); ++i) out.surface.pixels[i] = r.direct.pixels[i] + r.indirect.pixels[i];
+  for (size_t i = 0; i < out.surface.size(); ++i) out.surface.pixels[i] = parts.direct.pixels[i] + parts.indirect.pixels[i];
   return out;
 }
 

@@ -33,6 +33,17 @@ Image synthesize_photo(const GBuffer& gbuffer, const Camera& camera, const Integ
 // background (0 where none does): IlluminationImages::background.
 Image render_background(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator);
 
+// The illumination over the geometry in its two parts, each denoised as
+// render_illumination does: the light straight from the lights, and the rest
+// (the environment and all interreflection). render_illumination's surface
+// is their sum.
+struct IlluminationParts {
+  Image direct, indirect;
+};
+IlluminationParts render_illumination_parts(const GBuffer& gbuffer, const Integrator& integrator,
+                                            const IlluminationOptions& options, Progress& progress,
+                                            const std::string& label = "illumination");
+
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                                        const IlluminationOptions& options, Progress& progress,
                                        const std::string& label = "illumination");
