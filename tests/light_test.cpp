@@ -4,6 +4,8 @@
 // z = 0 (normal +z) is lit; the illumination at a point of it (the radiance a
 // white Lambertian surface reflects = irradiance / pi) averaged over many
 // samples must match the closed form within 1 %.
+#include "scene/light.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,7 +17,6 @@
 #include "render/integrator.h"
 #include "render/ray_scene.h"
 #include "scene/environment.h"
-#include "scene/light.h"
 #include "scene/probe.h"
 #include "scene/triangle_mesh.h"
 
@@ -411,9 +412,9 @@ TEST(AreaLight, ExactIrradianceMatchesTheClosedFormAndTheSamples) {
   l.color = Vec3(1.0f, 0.5f, 0.25f);
   const double radiance = power / (4.0 * w * h);
   const Vec3 up = Vec3::UnitZ();
-  EXPECT_NEAR(area_light_irradiance(l, Vec3::Zero(), up).x(), kPiD * radiance * 4.0 * corner_factor(1.0, 0.25, d),
-              1e-4 * radiance);
-  const Vec3 offset = area_light_irradiance(l, Vec3(0.8f, 0, 0), up);
+  EXPECT_NEAR(LightSampler(l).unshadowed_irradiance(Vec3::Zero(), up).x(),
+              kPiD * radiance * 4.0 * corner_factor(1.0, 0.25, d), 1e-4 * radiance);
+  const Vec3 offset = LightSampler(l).unshadowed_irradiance(Vec3(0.8f, 0, 0), up);
   EXPECT_NEAR(offset.x(), kPiD * radiance * rectangle_factor(-1.8, 0.2, -0.25, 0.25, d), 1e-4 * radiance);
   EXPECT_NEAR(offset.y(), 0.5f * offset.x(), 1e-6 * offset.x());  // the light's colour
 
@@ -429,7 +430,7 @@ TEST(AreaLight, ExactIrradianceMatchesTheClosedFormAndTheSamples) {
   l.direction = Vec3(0.3f, 0.2f, -1.0f).normalized();
   const Vec3 tilted_n = Vec3(0.2f, -0.3f, 1.0f).normalized();
   const double tilted = quadrature(l, Vec3(0.1f, 0.2f, 0), tilted_n);
-  EXPECT_NEAR(area_light_irradiance(l, Vec3(0.1f, 0.2f, 0), tilted_n).x(), tilted, 2e-3 * tilted);
+  EXPECT_NEAR(LightSampler(l).unshadowed_irradiance(Vec3(0.1f, 0.2f, 0), tilted_n).x(), tilted, 2e-3 * tilted);
 
   // A point on a wall (normal +x) at the light's height: half the rectangle
   // lies behind the wall's plane.
@@ -438,8 +439,8 @@ TEST(AreaLight, ExactIrradianceMatchesTheClosedFormAndTheSamples) {
   const Vec3 wall(0, 0.1f, 0), wall_n = Vec3::UnitX();
   const double cut = quadrature(l, wall, wall_n);
   ASSERT_GT(cut, 0.0);
-  EXPECT_NEAR(area_light_irradiance(l, wall, wall_n).x(), cut, 2e-3 * cut);
-  EXPECT_EQ(area_light_irradiance(l, Vec3(0, 0, 1), up), Vec3::Zero());  // above the emitting side
+  EXPECT_NEAR(LightSampler(l).unshadowed_irradiance(wall, wall_n).x(), cut, 2e-3 * cut);
+  EXPECT_EQ(LightSampler(l).unshadowed_irradiance(Vec3(0, 0, 1), up), Vec3::Zero());  // above the emitting side
 }
 
 TEST(AreaLight, SmallAndFarApproachesLambertianPointLimit) {
@@ -556,8 +557,8 @@ TEST(Shadow, ExactUnshadowedAreaLightIsExactInTheOpenAndDarkInTheUmbra) {
   for (int pass = 0; pass < passes; ++pass) {
     exact.pass = uint64_t(pass);
     render_direct_light(surfaces, rays, area, exact, one);
-    EXPECT_NEAR(one.at(0, 0).x(), area_light_irradiance(area, surfaces.surface[0].position, Vec3::UnitZ()).x() / kPiD,
-                1e-6);
+    EXPECT_NEAR(one.at(0, 0).x(),
+                LightSampler(area).unshadowed_irradiance(surfaces.surface[0].position, Vec3::UnitZ()).x() / kPiD, 1e-6);
     EXPECT_EQ(one.at(1, 0), Vec3::Zero());
     for (size_t i = 0; i < mean.size(); ++i) mean.pixels[i] += one.pixels[i] / float(passes);
   }
@@ -565,7 +566,8 @@ TEST(Shadow, ExactUnshadowedAreaLightIsExactInTheOpenAndDarkInTheUmbra) {
   plain.light_samples = 20000;
   Image reference;
   render_direct_light(surfaces, rays, area, plain, reference);
-  const double unshadowed = area_light_irradiance(area, surfaces.surface[2].position, Vec3::UnitZ()).x() / kPiD;
+  const double unshadowed =
+      LightSampler(area).unshadowed_irradiance(surfaces.surface[2].position, Vec3::UnitZ()).x() / kPiD;
   ASSERT_GT(reference.at(2, 0).x(), 0.2 * unshadowed);  // a penumbra, about half lit
   ASSERT_LT(reference.at(2, 0).x(), 0.8 * unshadowed);
   EXPECT_NEAR(mean.at(2, 0).x(), reference.at(2, 0).x(), 0.02 * reference.at(2, 0).x());

@@ -387,9 +387,7 @@ class LightingFit {
  private:
   void render(Basis& basis, const Lighting& lighting, const SurfaceAlbedo& bounce) {
     IlluminationParts parts = render_basis(rays_, gbuffer_, lighting, bounce, options_, progress_);
-    basis.image = Image(gbuffer_.width(), gbuffer_.height());
-    for (size_t i = 0; i < basis.image.size(); ++i)
-      basis.image.pixels[i] = parts.direct.pixels[i] + parts.indirect.pixels[i];
+    basis.image = parts.total();
     basis.indirect = std::move(parts.indirect);
   }
 
@@ -445,12 +443,10 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
     };
     constexpr int kPlacementPasses = 2;
     for (int pass = 0; pass < kPlacementPasses; ++pass) {
-      std::vector<PlacedLight> placed = refine_light_placement(fit.result.scene, rays, gbuffer,
-                                                               fit.indirect_illumination(), emission_of,
-                                                               options.placement, progress);
-      const bool moved = std::any_of(placed.begin(), placed.end(), [](const PlacedLight& p) {
-        return p.moved_m() > 0.0f || p.turned_deg() > 0.0f;
-      });
+      std::vector<PlacedLight> placed = refine_light_placement(
+          fit.result.scene, rays, gbuffer, fit.indirect_illumination(), emission_of, options.placement, progress);
+      const bool moved = std::any_of(placed.begin(), placed.end(),
+                                     [](const PlacedLight& p) { return p.moved_m() > 0.0f || p.turned_deg() > 0.0f; });
       if (pass > 0 && !moved) break;
       if (pass == 0) {
         fit.result.placement = std::move(placed);

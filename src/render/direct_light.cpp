@@ -43,10 +43,10 @@ struct RowRays {
   std::vector<int> samples;  // per pixel: surface samples x light samples
   std::vector<Vec3> sum;
   // Per pixel, for DirectLightSettings::exact_unshadowed: the samples'
-  // irradiance, blocked or not, and the exact unshadowed irradiance summed
-  // over the surface samples.
-  std::vector<Vec3> offered, exact;
-  std::vector<int> surfaces;
+  // irradiance (summed over the channels), blocked or not, and the exact
+  // unshadowed irradiance summed over the surface samples.
+  std::vector<float> offered;
+  std::vector<Vec3> exact;
   ShadowPacket packet;
   Vec3 irradiance[ShadowPacket::kCapacity];  // unoccluded, of each ray's light sample
   int column[ShadowPacket::kCapacity];
@@ -89,9 +89,8 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
       row.samples.assign(size_t(width), 0);
       row.sum.assign(size_t(width), Vec3::Zero());
       if (ratio) {
-        row.offered.assign(size_t(width), Vec3::Zero());
+        row.offered.assign(size_t(width), 0.0f);
         row.exact.assign(size_t(width), Vec3::Zero());
-        row.surfaces.assign(size_t(width), 0);
       }
       for (int x = 0; x < width; ++x) {
         const size_t pixel = size_t(y) * width + x;
@@ -100,17 +99,14 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
         for (int k = 0; k < samples_per_pixel; ++k) {
           const SurfacePoint* p = surface_at(pixel, k);
           if (!p) continue;
-          if (ratio) {
-            row.exact[size_t(x)] += area_light_irradiance(light, p->position, p->normal);
-            ++row.surfaces[size_t(x)];
-          }
+          if (ratio) row.exact[size_t(x)] += sampler.unshadowed_irradiance(p->position, p->normal);
           for (int j = 0; j < light_samples; ++j) {
             ++row.samples[size_t(x)];
             Vec2 u = random ? rng->uniform2() : Vec2(0.5f, 0.5f);
             if (strata > 1) u = (Vec2(float(j % strata), float(j / strata)) + u) / float(strata);
             const LightSample s = sampler.sample(p->position, p->normal, u);
             if (s.irradiance.isZero()) continue;
-            if (ratio) row.offered[size_t(x)] += s.irradiance;
+            if (ratio) row.offered[size_t(x)] += s.irradiance.sum();
             if (s.direction.dot(p->geometric_normal) <= 0.0f) continue;  // below the facet: blocked
             const int slot = row.packet.add(scene.shadow_ray(*p, s.direction, s.distance));
             row.irradiance[slot] = s.irradiance;
@@ -122,12 +118,12 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
       if (row.packet.size()) row.trace(scene);
       for (int x = 0; x < width; ++x) {
         const size_t i = size_t(x);
-        if (ratio) {
-          const float offered = row.offered[i].sum();
-          out.at(x, y) = offered > 0.0f ? Vec3(row.exact[i] * (row.sum[i].sum() / offered * kInvPi / float(row.surfaces[i])))
-                                        : Vec3::Zero();
+        const int n = row.samples[i];
+        if (ratio) {  // the mean exact irradiance over the surface samples, times the unblocked share
+          const float surfaces = float(n / light_samples), offered = row.offered[i];
+          out.at(x, y) =
+              offered > 0.0f ? Vec3(row.exact[i] * (row.sum[i].sum() / offered * kInvPi / surfaces)) : Vec3::Zero();
         } else {
-          const int n = row.samples[i];
           out.at(x, y) = n ? Vec3(row.sum[i] * (kInvPi / float(n))) : Vec3::Zero();
         }
       }

@@ -25,7 +25,7 @@ struct PixelSurfaces {
 
 struct DirectLightSettings {
   int light_samples = 1;  // per surface sample
-  // Area lights: the exact unshadowed irradiance (area_light_irradiance)
+  // Area lights: the exact unshadowed irradiance (LightSampler::unshadowed_irradiance)
   // times the share of the samples' irradiance that no shadow ray blocks (a
   // ratio estimator: noise only in the penumbrae, none where the light is
   // wholly seen or wholly hidden). A ratio of sums is biased in penumbrae,

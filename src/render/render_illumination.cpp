@@ -96,6 +96,12 @@ Image render_background(const GBuffer& gbuffer, const Camera& camera, const Inte
   return out;
 }
 
+Image IlluminationParts::total() const {
+  Image sum = direct;
+  for (size_t i = 0; i < sum.size(); ++i) sum.pixels[i] += indirect.pixels[i];
+  return sum;
+}
+
 IlluminationParts render_illumination_parts(const GBuffer& gbuffer, const Integrator& integrator,
                                             const IlluminationOptions& options, Progress& progress,
                                             const std::string& label) {
@@ -120,10 +126,8 @@ IlluminationParts render_illumination_parts(const GBuffer& gbuffer, const Integr
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                                        const IlluminationOptions& options, Progress& progress,
                                        const std::string& label) {
-  const IlluminationParts parts = render_illumination_parts(gbuffer, integrator, options, progress, label);
-  IlluminationImages out{Image(gbuffer.width(), gbuffer.height()), render_background(gbuffer, camera, integrator)};
-  for (size_t i = 0; i < out.surface.size(); ++i) out.surface.pixels[i] = parts.direct.pixels[i] + parts.indirect.pixels[i];
-  return out;
+  return {render_illumination_parts(gbuffer, integrator, options, progress, label).total(),
+          render_background(gbuffer, camera, integrator)};
 }
 
 Image synthesize_photo(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,

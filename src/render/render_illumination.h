@@ -39,6 +39,7 @@ Image render_background(const GBuffer& gbuffer, const Camera& camera, const Inte
 // is their sum.
 struct IlluminationParts {
   Image direct, indirect;
+  Image total() const;  // direct + indirect
 };
 IlluminationParts render_illumination_parts(const GBuffer& gbuffer, const Integrator& integrator,
                                             const IlluminationOptions& options, Progress& progress,

@@ -1,9 +1,9 @@
 #include "scene/light.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-#include <vector>
 
 #include "core/sampling.h"
 
@@ -58,58 +58,46 @@ float triangle_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   return 2.0f * std::atan2(numerator, denominator);
 }
 
-}  // namespace
-
-float area_light_solid_angle(const Light& light, const Vec3& from) {
-  const AreaLightSides sides = area_light_sides(light);
-  const Vec3 half_w = 0.5f * light.size.x() * sides.w, half_h = 0.5f * light.size.y() * sides.h;
-  const Vec3 centre = light.position - from;
-  const Vec3 a = centre - half_w - half_h, b = centre + half_w - half_h, c = centre + half_w + half_h,
-             d = centre - half_w + half_h;
-  return triangle_solid_angle(a, b, c) + triangle_solid_angle(a, c, d);
+// The corners of a rectangle, in order round it: centre +- half_w +- half_h.
+std::array<Vec3, 4> rectangle_corners(const Vec3& centre, const Vec3& half_w, const Vec3& half_h) {
+  return {centre - half_w - half_h, centre + half_w - half_h, centre + half_w + half_h, centre - half_w + half_h};
 }
 
-namespace {
-
-// The corners of `polygon` (vectors from the viewpoint) on the side of the
-// plane through the viewpoint where n . v >= 0 (Sutherland-Hodgman).
-std::vector<Vec3> above_horizon(const std::vector<Vec3>& polygon, const Vec3& n) {
-  std::vector<Vec3> kept;
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    const Vec3& a = polygon[i];
-    const Vec3& b = polygon[(i + 1) % polygon.size()];
+// Lambert (1760): a convex polygon of unit radiance, corners v_i seen from a
+// point with unit normal n, wholly above its horizon, gives the irradiance
+// 1/2 |sum_i theta_i n . (v_i x v_i+1) / |v_i x v_i+1||, theta_i the angle
+// between v_i and v_i+1 (Arvo 1995, "Applications of irradiance tensors").
+// The part of the rectangle below the horizon is cut off first
+// (Sutherland-Hodgman: a plane cuts a quadrilateral into at most five
+// corners).
+float rectangle_irradiance(const std::array<Vec3, 4>& rectangle, const Vec3& n) {
+  std::array<Vec3, 5> corners;
+  size_t count = 0;
+  for (size_t i = 0; i < rectangle.size(); ++i) {
+    const Vec3& a = rectangle[i];
+    const Vec3& b = rectangle[(i + 1) % rectangle.size()];
     const float ha = n.dot(a), hb = n.dot(b);
-    if (ha >= 0.0f) kept.push_back(a);
-    if ((ha >= 0.0f) != (hb >= 0.0f)) kept.push_back(a + (b - a) * (ha / (ha - hb)));
+    if (ha >= 0.0f) corners[count++] = a;
+    if ((ha >= 0.0f) != (hb >= 0.0f)) corners[count++] = a + (b - a) * (ha / (ha - hb));
   }
-  return kept;
-}
-
-}  // namespace
-
-// Lambert (1760): a polygon of uniform radiance L, corners v_i seen from the
-// point, gives E = L/2 |sum_i theta_i n . (v_i x v_i+1) / |v_i x v_i+1||,
-// theta_i the angle between v_i and v_i+1 (Arvo 1995, "Applications of
-// irradiance tensors").
-Vec3 area_light_irradiance(const Light& light, const Vec3& p, const Vec3& n) {
-  const Vec3 axis = light.direction.normalized();
-  if (axis.dot(p - light.position) <= 0.0f) return Vec3::Zero();  // behind the emitting side
-  const AreaLightSides sides = area_light_sides(light);
-  const Vec3 half_w = 0.5f * light.size.x() * sides.w, half_h = 0.5f * light.size.y() * sides.h;
-  const Vec3 centre = light.position - p;
-  const std::vector<Vec3> corners =
-      above_horizon({centre - half_w - half_h, centre + half_w - half_h, centre + half_w + half_h,
-                     centre - half_w + half_h}, n);
   double sum = 0.0;
-  for (size_t i = 0; i < corners.size(); ++i) {
-    const Vec3 a = corners[i].normalized(), b = corners[(i + 1) % corners.size()].normalized();
+  for (size_t i = 0; i < count; ++i) {
+    const Vec3 a = corners[i].normalized(), b = corners[(i + 1) % count].normalized();
     const Vec3 normal = a.cross(b);
     const float sine = normal.norm();
     if (!(sine > 0.0f)) continue;  // a corner at the point, or an edge seen end on
     sum += std::atan2(sine, a.dot(b)) * double(n.dot(normal) / sine);
   }
-  const Vec3 radiance = light.emission() / (4.0f * light.size.x() * light.size.y());  // FORMAT.md
-  return radiance * float(0.5 * std::abs(sum));
+  return float(0.5 * std::abs(sum));
+}
+
+}  // namespace
+
+float area_light_solid_angle(const Light& light, const Vec3& from) {
+  const AreaLightSides sides = area_light_sides(light);
+  const auto [a, b, c, d] =
+      rectangle_corners(light.position - from, 0.5f * light.size.x() * sides.w, 0.5f * light.size.y() * sides.h);
+  return triangle_solid_angle(a, b, c) + triangle_solid_angle(a, c, d);
 }
 
 LightSampler::LightSampler(const Light& light) : light_(light), emission_(light.emission()) {
@@ -195,6 +183,15 @@ LightSample LightSampler::sample_point_like(const Vec3& p, const Vec3& n, const 
     s.irradiance = emission_ * (cone * cos_surface * cos_light / (4.0f * kPi * s.distance * s.distance));
   }
   return s;
+}
+
+Vec3 LightSampler::unshadowed_irradiance(const Vec3& p, const Vec3& n) const {
+  const Light& light = light_;
+  if (axis_.dot(p - light.position) <= 0.0f) return Vec3::Zero();              // behind the emitting side
+  const Vec3 radiance = emission_ / (4.0f * light.size.x() * light.size.y());  // FORMAT.md
+  return radiance * rectangle_irradiance(rectangle_corners(light.position - p, 0.5f * light.size.x() * side_w_,
+                                                           0.5f * light.size.y() * side_h_),
+                                         n);
 }
 
 // One-sided rectangle of radiance power/(4 w h), sampled uniformly by area.

@@ -44,12 +44,6 @@ AreaLightSides area_light_sides(const Light& light);
 // near the viewpoint).
 float area_light_solid_angle(const Light& light, const Vec3& from);
 
-// The irradiance (W/m^2, times the emission's colour) an area light's
-// rectangle sends to point p with unit normal n, nothing in the way: exactly,
-// by Lambert's formula for a polygon, over the part of the rectangle above p's
-// horizon. What the samples of LightSampler estimate, without their noise.
-Vec3 area_light_irradiance(const Light& light, const Vec3& p, const Vec3& n);
-
 // One sample of a light as seen from a surface point.
 struct LightSample {
   Vec3 direction;      // unit, from the surface point towards the light
@@ -68,6 +62,10 @@ class LightSampler {
   // False where every u gives the same sample (a point or spot without
   // radius, a sun without angle): one sample is then exact.
   bool needs_random() const;
+  // An area light: the irradiance its rectangle sends to p (unit normal n)
+  // with nothing in the way, exactly (Lambert's formula for a polygon, over
+  // the part above p's horizon): what sample() estimates, without its noise.
+  Vec3 unshadowed_irradiance(const Vec3& p, const Vec3& n) const;
   const Light& light() const { return light_; }
 
  private:
