@@ -32,11 +32,11 @@ const AnalysedScene& room() {
       const example::RoomAlbedo albedo = example::room_albedo();
       const Integrator integrator(rays, lighting, &albedo);
       const GBuffer photo_samples(scene.camera, rays, 4, 5, "room");
-      scene.photo = synthesize_photo(photo_samples, scene.camera, integrator, albedo, 16, 3, Progress::silent());
+      scene.photo = synthesize_photo(photo_samples, scene.camera, integrator, albedo, 4, 3, Progress::silent());
     }
     AnalysisOptions options;
     options.strategy = Strategy::lights;
-    options.paths_per_pixel = 8;
+    options.paths_per_pixel = 4;
     options.interreflection = false;
     return AnalysedScene::analyse(std::move(scene), options, Progress::silent());
   }();
@@ -46,10 +46,10 @@ const AnalysedScene& room() {
 // Cheap refinement, so that the tests converge in a second or two.
 SessionOptions quick_options() {
   SessionOptions o;
-  o.soft_light_samples = 8;
-  o.bounce_paths = 4;
-  o.final_render.paths_per_pixel = 8;
-  o.final_render.max_bounces = 2;
+  o.soft_light_samples = 4;
+  o.bounce_paths = 2;
+  o.final_render.paths_per_pixel = 4;
+  o.final_render.max_bounces = 1;
   o.settle = std::chrono::milliseconds(20);
   return o;
 }

@@ -59,8 +59,8 @@ StudioOptions quick_options() {
   o.analysis.interreflection = false;
   o.session.backend = Backend::cpu;
   o.session.soft_light_samples = 4;
-  o.session.bounce_paths = 2;
-  o.session.final_render.paths_per_pixel = 4;
+  o.session.bounce_paths = 1;
+  o.session.final_render.paths_per_pixel = 1;
   o.session.final_render.max_bounces = 1;
   o.session.settle = std::chrono::milliseconds(20);
   o.remember_recent = false;
@@ -1367,5 +1367,47 @@ class StudioTest : public QObject {
   }
 };
 
-QTEST_MAIN(StudioTest)
+// The functions that wait for the session's final renders, ten times slower
+// under the sanitizers than the rest: `studio_test --final-renders` runs
+// them, `studio_test --editing` everything else (tests/CMakeLists.txt: the
+// first is labelled `slow`, so CI runs it in the Release step only; the
+// session's final renders run under the sanitizers in session_test).
+const QStringList kFinalRenderFunctions = {
+    "the_picture_changes_when_a_light_moves",
+    "solo_shows_one_light_alone_and_leaves_the_rig",
+    "exporting_while_soloed_renders_that_light_alone",
+    "opening_a_rig_keeps_the_images_of_lights_that_did_not_move",
+    "a_plain_click_on_the_photo_selects_and_moves_nothing",
+    "the_photo_shows_a_spots_cone_where_the_camera_sees_it",
+    "dragging_handles_on_the_photo_moves_and_aims_the_light",
+    "the_geometry_over_the_photo_is_a_view_toggle",
+    "placing_a_light_from_the_photo_is_a_tool_or_ctrl_click",
+    "dragging_an_area_lights_circle_on_the_photo_turns_it",
+    "the_split_shows_the_photo_left_and_the_relit_image_right",
+    "export_writes_the_full_size_image",
+};
+
+// QtTest's arguments, the test functions of the group asked for (one of
+// the two flags above, first) put in their place; without a flag, as given.
+QStringList test_arguments(const QObject& test, QStringList arguments) {
+  const bool final_renders = arguments.size() > 1 && arguments[1] == "--final-renders";
+  if (arguments.size() < 2 || (!final_renders && arguments[1] != "--editing")) return arguments;
+  arguments.removeAt(1);
+  const QMetaObject& meta = *test.metaObject();
+  for (int m = meta.methodOffset(); m < meta.methodCount(); ++m) {
+    const QMetaMethod method = meta.method(m);
+    const QString name = QString::fromLatin1(method.name());
+    if (method.methodType() != QMetaMethod::Slot || method.parameterCount() != 0 ||
+        QStringList{"initTestCase", "cleanupTestCase", "init", "cleanup"}.contains(name))
+      continue;
+    if (kFinalRenderFunctions.contains(name) == final_renders) arguments.append(name);
+  }
+  return arguments;
+}
+
+int main(int argc, char** argv) {
+  QApplication app(argc, argv);
+  StudioTest test;
+  return QTest::qExec(&test, test_arguments(test, app.arguments()));
+}
 #include "studio_test.moc"
