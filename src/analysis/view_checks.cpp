@@ -14,7 +14,7 @@ namespace relight {
 
 namespace {
 
-constexpr float kMinCoverage = 0.05f;  // of the photo
+constexpr float kMinShareInView = 0.05f;  // of the photo
 constexpr float kUnitRatio = 50.0f;    // depth against the lights' distances
 // The share of the surfaces in view whose albedo may exceed 1 (noise,
 // highlights) before the lighting is said to be too weak.
@@ -28,7 +28,7 @@ float median(std::vector<float> values) {
 void warn_about_coverage(const Scene& scene, const GBuffer& gbuffer) {
   const auto& c = gbuffer.coverage();
   const float share = std::accumulate(c.begin(), c.end(), 0.0f) / float(c.size());
-  if (share < kMinCoverage)
+  if (share < kMinShareInView)
     spdlog::warn(
         "{}: the geometry covers {:.1f} % of the photo (the rest is taken as background); check the camera "
         "and the geometry's units",

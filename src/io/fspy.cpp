@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "io/file_bytes.h"
 #include "io/input_file.h"
 #include "io/json_reader.h"
 
@@ -21,11 +22,6 @@ namespace {
 // the size of the image after it.
 constexpr char kMagic[4] = {'f', 's', 'p', 'y'};
 constexpr size_t kHeaderSize = 16;
-
-uint32_t little_endian_u32(const std::string& bytes, size_t offset) {
-  const auto* b = reinterpret_cast<const unsigned char*>(bytes.data() + offset);
-  return uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24;
-}
 
 // The camera parameters, and the JSON pointer they sit at, of a project file.
 std::pair<json, std::string> project_camera_parameters(const std::string& name, const std::string& bytes) {

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "io/file_bytes.h"
 #include "io/input_file.h"
 #include "io/json_reader.h"
 
@@ -24,17 +25,6 @@ namespace {
 // Luminous efficacy glTF exporters (Blender's among them) take for a watt of
 // light: 683 lm/W, the SI candela's.
 constexpr double kLumensPerWatt = 683.0;
-
-std::string lower_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
-
-uint32_t little_endian_u32(const std::string& bytes, size_t offset) {
-  const auto* b = reinterpret_cast<const unsigned char*>(bytes.data() + offset);
-  return uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24;
-}
 
 // The JSON of a .gltf, or the JSON chunk of a .glb (12-byte header "glTF",
 // version, length; then chunks of length, type, data, the first one JSON).

@@ -73,19 +73,19 @@ Vec3 ResponseCurve::linear(const Vec3& encoded) const {
 }
 
 namespace {
-std::mutex g_mutex;
+std::mutex g_response_mutex;
 fs::path g_path;
 std::optional<ResponseCurve> g_curve;
 }  // namespace
 
 void set_ldr_response_file(const fs::path& path) {
-  const std::lock_guard lock(g_mutex);
+  const std::lock_guard lock(g_response_mutex);
   g_path = path;
   g_curve.reset();
 }
 
 const ResponseCurve* ldr_response() {
-  const std::lock_guard lock(g_mutex);
+  const std::lock_guard lock(g_response_mutex);
   if (g_path.empty()) return nullptr;
   if (!g_curve) g_curve = ResponseCurve::read(g_path);
   return &*g_curve;

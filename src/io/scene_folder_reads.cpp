@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "io/file_bytes.h"
 #include "io/gltf_scene.h"
 
 namespace relight {
@@ -30,12 +31,6 @@ fs::path resolved(const fs::path& p) {
 bool is_inside(const fs::path& folder, const fs::path& target) {
   const fs::path relative = target.lexically_relative(folder);
   return !relative.empty() && *relative.begin() != "..";
-}
-
-std::string lower_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
 }
 
 // The material libraries an OBJ names: the rest of each "mtllib" line, as
