@@ -660,5 +660,36 @@ TEST(Environment, ZeroScaleGivesNothing) {
   EXPECT_EQ(scene.mean_illumination(0, 0, 1000), Vec3::Zero());
 }
 
+
+// The session renders a light's next interactive image into the storage of
+// the last one, handed on by move: an image moved from is 0 x 0, so the
+// render makes a new one rather than writing where the pixels were (it kept
+// its size and crashed relight studio's test now and then).
+TEST(DirectLight, RendersIntoAnImageMovedFrom) {
+  const Light lamp = point_light(Vec3(0, 0, 1), 100.0f);
+  const TriangleMesh mesh = plane_mesh();
+  const RayScene rays(mesh);
+  PixelSurfaces surfaces;
+  surfaces.width = 2, surfaces.height = 1;
+  for (const float x : {0.0f, 0.5f}) {
+    SurfacePoint hit;
+    ASSERT_TRUE(rays.intersect(Vec3(x, 0, 0.25f), Vec3(0, 0, -1), hit));
+    surfaces.surface.push_back(hit);
+    surfaces.hit.push_back(1);
+  }
+  Image last(2, 1);
+  const Image kept = std::move(last);
+  EXPECT_EQ(last.width, 0);
+  EXPECT_EQ(last.height, 0);
+  EXPECT_TRUE(last.empty());
+  Image assigned(2, 1);
+  assigned = std::move(last);  // from an empty one
+  EXPECT_EQ(assigned.width, 0);
+  render_direct_light(surfaces, rays, lamp, DirectLightSettings{}, last);
+  ASSERT_EQ(last.size(), 2u);
+  EXPECT_GT(last.at(0, 0).x(), last.at(1, 0).x());  // under the lamp, brighter
+  EXPECT_EQ(kept.size(), 2u);
+}
+
 }  // namespace
 }  // namespace relight

@@ -2,6 +2,7 @@
 // for photos, albedo, illumination and masks inside the program.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "core/vec.h"
@@ -15,6 +16,25 @@ struct Image {
 
   Image() = default;
   Image(int w, int h, const Vec3& fill = Vec3::Zero()) : width(w), height(h), pixels(size_t(w) * h, fill) {}
+  Image(const Image&) = default;
+  Image& operator=(const Image&) = default;
+  // A moved-from image is 0 x 0: its size never promises pixels it gave
+  // away. (The session renders a light's next interactive image into the
+  // last one's storage when the size matches; a moved-from image that kept
+  // its size sent it writing through a null pointer.)
+  Image(Image&& other) noexcept
+      : width(std::exchange(other.width, 0)), height(std::exchange(other.height, 0)), pixels(std::move(other.pixels)) {
+    other.pixels.clear();
+  }
+  Image& operator=(Image&& other) noexcept {
+    if (this != &other) {
+      width = std::exchange(other.width, 0);
+      height = std::exchange(other.height, 0);
+      pixels = std::move(other.pixels);
+      other.pixels.clear();
+    }
+    return *this;
+  }
 
   bool empty() const { return pixels.empty(); }
   size_t size() const { return pixels.size(); }
