@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "render/direct_light.h"
 
 namespace relight {
 
@@ -14,9 +15,7 @@ Image denoise_illumination(const Image& noisy, std::vector<float> variance, cons
   static constexpr float kKernel[3] = {3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f};  // B3 spline, |offset| 0, 1, 2
   // Each pixel's central sample side by side: in the G-buffer they are a
   // pixel's sub-samples apart, a cache line each for the 25 taps.
-  std::vector<GBufferSample> centre(size_t(w) * h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) centre[size_t(y) * w + x] = g.central(x, y);
+  const PixelSurfaces centre = PixelSurfaces::central_samples(g);
   Image current = noisy, next(w, h);
   std::vector<float> next_variance(variance.size());
 
@@ -28,15 +27,15 @@ Image denoise_illumination(const Image& noisy, std::vector<float> variance, cons
     tbb::parallel_for(0, h, [&](int y) {
       for (int x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
-        const GBufferSample& p = centre[i];
-        if (!p.hit) {
+        if (!centre.hit[i]) {
           next.pixels[i] = current.pixels[i];
           next_variance[i] = variance[i];
           continue;
         }
         const float lum_p = lum[i];
         const float lum_scale = options.luminance_sigma * std::sqrt(std::max(variance[i], 0.0f)) + 1e-6f;
-        const float plane_scale = options.plane_sigma * p.surface.distance;
+        const SurfacePoint& p = centre.surface[i];
+        const float plane_scale = options.plane_sigma * p.distance;
         Vec3 sum = Vec3::Zero();
         float weight_sum = 0.0f, variance_sum = 0.0f;
         for (int dy = -2; dy <= 2; ++dy)
@@ -44,11 +43,11 @@ Image denoise_illumination(const Image& noisy, std::vector<float> variance, cons
             const int qx = x + dx * step, qy = y + dy * step;
             if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
             const size_t j = size_t(qy) * w + qx;
-            const GBufferSample& q = centre[j];
-            if (!q.hit) continue;
-            const float n_dot = p.surface.normal.dot(q.surface.normal);
+            if (!centre.hit[j]) continue;
+            const SurfacePoint& q = centre.surface[j];
+            const float n_dot = p.normal.dot(q.normal);
             if (n_dot <= 0.0f) continue;
-            const float plane = std::abs(p.surface.geometric_normal.dot(q.surface.position - p.surface.position));
+            const float plane = std::abs(p.geometric_normal.dot(q.position - p.position));
             const float lum_diff = std::abs(lum[j] - lum_p);
             // n_dot^normal_power x exp(-plane) x exp(-lum_diff) as one exponential:
             // the filter's cost is these transcendentals, 25 per pixel and pass.
