@@ -25,7 +25,8 @@ struct Placed {
 
 // The room lit by `truths` photographed, then `givens` placed from their
 // shadows; how far each was from its truth before and after.
-std::vector<Placed> place(const std::vector<Light>& truths, const std::vector<Light>& givens) {
+std::vector<Placed> place(const std::vector<Light>& truths, const std::vector<Light>& givens,
+                          const SightLineOf& sight_line_of = no_sight_line) {
   Scene scene = example::room_scene(320, 240);
   const RayScene rays(scene.mesh);
   const GBuffer gbuffer(scene.camera, rays, 4, 5, "room");
@@ -45,8 +46,8 @@ std::vector<Placed> place(const std::vector<Light>& truths, const std::vector<Li
   const Image indirect =
       render_illumination_parts(gbuffer, Integrator(rays, lighting, &albedo), options, Progress::silent()).indirect;
   scene.lights = givens;
-  const std::vector<PlacedLight> placed =
-      refine_light_placement(scene, rays, gbuffer, indirect, own_emission, PlacementOptions{}, Progress::silent());
+  const std::vector<PlacedLight> placed = refine_light_placement(scene, rays, gbuffer, indirect, own_emission,
+                                                                 sight_line_of, PlacementOptions{}, Progress::silent());
   EXPECT_EQ(placed.size(), truths.size());
 
   std::vector<Placed> result;
@@ -62,7 +63,17 @@ std::vector<Placed> place(const std::vector<Light>& truths, const std::vector<Li
   return result;
 }
 
-Placed place(const Light& truth, const Light& given) { return place(std::vector{truth}, std::vector{given}).front(); }
+Placed place(const Light& truth, const Light& given, const SightLineOf& sight_line_of = no_sight_line) {
+  return place(std::vector{truth}, std::vector{given}, sight_line_of).front();
+}
+
+// The line a probe 1.5 m from the light sees it along, as fit measures it.
+SightLineOf seen_by_a_probe(const Light& truth) {
+  const Vec3 towards = Vec3(0.6f, 0.6f, 0.53f).normalized();
+  return [=](size_t) {
+    return std::optional<SightLine>(SightLine{truth.position - 1.5f * towards, towards, std::nullopt});
+  };
+}
 
 // `d` turned by `degrees` about an axis across it.
 Vec3 turned(const Vec3& d, float degrees) {
@@ -111,6 +122,32 @@ TEST(LightPlacement, TurnsASpotBackToItsConeAndKeepsItNearItsShadows) {
   const Placed p = place(truth, given);
   EXPECT_LE(p.after_deg, 1.6f);  // 0.70, 1.41, 1.31 degrees
   EXPECT_LE(p.after_m, 0.16f);   // 0.069, 0.127, 0.126 m
+}
+
+// A spot a probe sees comes back along the line it is seen along, its place
+// then fixed by the photo to the one free distance along it.
+TEST(LightPlacement, BringsASpotAProbeSeesBackAlongItsSightLine) {
+  const Light truth = example::evening_rig().lights.at(1);
+  Light given = truth;
+  given.position += Vec3(-0.1f, 0.1f, 0.05f);  // 0.15 m
+  given.direction = turned(truth.direction, 3.0f);
+  const Placed p = place(truth, given, seen_by_a_probe(truth));
+  EXPECT_LE(p.after_deg, 1.6f);
+  EXPECT_LE(p.after_m, 0.05f);
+}
+
+// Two probes see the lamp: it starts where their lines cross, 20 cm from
+// where it was given, and stays there.
+TEST(LightPlacement, PlacesALampTwoProbesSeeWhereTheirLinesCross) {
+  const Light truth = room_lamp();
+  Light given = truth;
+  given.position += Vec3(0.12f, -0.1f, 0.12f);  // 0.2 m
+  const SightLineOf two_probes = [&](size_t) {
+    SightLine line = *seen_by_a_probe(truth)(0);
+    line.crossing = truth.position;
+    return std::optional<SightLine>(line);
+  };
+  EXPECT_LE(place(truth, given, two_probes).after_m, 0.01f);
 }
 
 // Both at once: the lamp's shadows and falloff dominate the photo and it

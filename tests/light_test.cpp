@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <numbers>
 
@@ -572,6 +573,85 @@ TEST(Shadow, ExactUnshadowedAreaLightIsExactInTheOpenAndDarkInTheUmbra) {
   ASSERT_LT(reference.at(2, 0).x(), 0.8 * unshadowed);
   EXPECT_NEAR(mean.at(2, 0).x(), reference.at(2, 0).x(), 0.02 * reference.at(2, 0).x());
   EXPECT_NEAR(mean.at(0, 0).x(), reference.at(0, 0).x(), 0.01 * reference.at(0, 0).x());
+}
+
+// A coarse sphere (12 segments around, 6 rings) with its vertices' normals
+// radial, as a smooth-shaded model exports it; its vertices alternately
+// `bumps` (a fraction of the radius) out and in, as a model a little off is.
+TriangleMesh coarse_sphere(float bumps) {
+  constexpr int kAround = 12, kRings = 6;
+  TriangleMesh mesh;
+  for (int r = 0; r <= kRings; ++r)
+    for (int a = 0; a < kAround; ++a) {
+      const float polar = float(kPiD) * float(r) / kRings, azimuth = 2.0f * float(kPiD) * float(a) / kAround;
+      const Vec3 n(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth), std::cos(polar));
+      mesh.positions.push_back((1.0f + bumps * float((r + a) % 2 ? 1 : -1)) * n);
+      mesh.normals.push_back(n);
+    }
+  const auto at = [](int r, int a) { return uint32_t(r * kAround + (a % kAround)); };
+  for (int r = 0; r < kRings; ++r)
+    for (int a = 0; a < kAround; ++a) {
+      if (r > 0) mesh.triangles.push_back({at(r, a), at(r + 1, a), at(r, a + 1)});
+      if (r < kRings - 1) mesh.triangles.push_back({at(r, a + 1), at(r + 1, a), at(r + 1, a + 1)});
+    }
+  return mesh;
+}
+
+// Over points of the coarse sphere where the sun grazes its smooth surface
+// (cosine 0.05-0.4 to the shading normal): the mean direct light over the
+// smooth sphere's (E cos / pi), and the share of the points the sun lights
+// from below their facet's plane. With `lift`, shadow rays start on the
+// smooth surface (RayScene::shadow_ray), without, on the facet.
+struct GrazingSunlight {
+  double of_smooth = 0.0, below_facet = 0.0;
+};
+GrazingSunlight grazing_sunlight(float bumps, bool lift) {
+  const TriangleMesh mesh = coarse_sphere(bumps);
+  const RayScene rays(mesh);
+  Lighting lighting;
+  // From 15 degrees beside the +x axis: the smooth surface's terminator then
+  // crosses the facets between the vertices' meridians, 30 degrees apart.
+  const Vec3 towards_sun(std::cos(radians(15.0f)), -std::sin(radians(15.0f)), 0.0f);
+  lighting.lights = {sun(-towards_sun, 3.0f)};
+  lighting.environment = Environment::constant(Vec3::Zero());
+  IntegratorOptions options;
+  options.max_bounces = 0;
+  const Integrator integrator(rays, lighting, nullptr, options);
+  GrazingSunlight g;
+  int points = 0;
+  for (float x = 0.0f; x < 0.5f; x += 0.01f)
+    for (float z = -0.6f; z <= 0.6f; z += 0.05f) {
+      SurfacePoint p;
+      if (!rays.intersect(Vec3(x, 3, z), Vec3(0, -1, 0), p)) continue;
+      const float cosine = p.normal.dot(towards_sun);
+      if (cosine < 0.05f || cosine > 0.4f) continue;
+      if (!lift) p.lift = 0.0f;
+      Rng rng(1, uint64_t(points));
+      g.of_smooth += double(integrator.illumination(p, rng).x()) / (3.0 * cosine / kPiD);
+      g.below_facet += p.geometric_normal.dot(towards_sun) < 0.0f;
+      ++points;
+    }
+  EXPECT_GT(points, 100);
+  g.of_smooth /= points, g.below_facet /= points;
+  return g;
+}
+
+// The shadow terminator: where the light grazes a coarse smooth-shaded
+// sphere it comes from below some facets' planes (a test of the facet's
+// normal turned those black), and where the facets are a little uneven their
+// neighbours shadow them. Started on the smooth surface, the shadow rays give
+// the smooth sphere's light.
+TEST(Shadow, ACoarseSmoothSphereIsLitAsTheSmoothSphereWhereTheLightGrazesIt) {
+  const GrazingSunlight even = grazing_sunlight(0.0f, true);
+  EXPECT_GT(even.below_facet, 0.1);
+  EXPECT_GT(even.of_smooth, 0.98);
+  const GrazingSunlight uneven = grazing_sunlight(0.02f, true), uneven_on_facets = grazing_sunlight(0.02f, false);
+  std::printf(
+      "grazing sun on a coarse sphere: %.3f of the smooth sphere's (%.0f %% of the points lit from below "
+      "their facet); vertices 2 %% uneven: %.3f, from the facets %.3f\n",
+      even.of_smooth, 100 * even.below_facet, uneven.of_smooth, uneven_on_facets.of_smooth);
+  EXPECT_GT(uneven.of_smooth, 0.95);
+  EXPECT_LT(uneven_on_facets.of_smooth, 0.8);
 }
 
 TEST(Lights, ContributionsOfSeveralLightsAdd) {

@@ -109,6 +109,31 @@ TEST(ProbeLights, MeasuresAnEvenlyBrightPanelWhole) {
   EXPECT_NEAR(emission->x(), 300.0f, 9.0f);  // 3 %
 }
 
+// A panel seen at a slant fills more of the view with its near half: the
+// probe measures the middle of what it fills (seen_middle), which `relight
+// fit` turns back into a line through its centre.
+TEST(ProbeLights, SeesASlantedPanelsMiddleNotItsCentre) {
+  Light panel;
+  panel.type = LightType::area;
+  panel.position = Vec3(0.9f, 0.3f, 0.8f);
+  panel.direction = Vec3(0, 0, -1);
+  panel.up = Vec3(0, 1, 0);
+  panel.size = Vec2(1.0f, 0.6f);
+  panel.power = 300.0f;
+  const Probe probe = probe_with_panel(panel, Vec3::Constant(0.3f));
+  const auto seen = locate_light_in_probe(probe, panel);
+  ASSERT_TRUE(seen);
+  const auto degrees_to = [&](const Vec3& d) { return angle_degrees(seen->direction, d); };
+  const float to_middle = degrees_to(seen_middle(panel, probe.position));
+  const float to_centre = degrees_to((panel.position - probe.position).normalized());
+  std::printf(
+      "[ figures  ] the measured direction is %.2f degrees from the panel's seen middle, %.2f from its "
+      "centre\n",
+      to_middle, to_centre);
+  EXPECT_LT(to_middle, 0.5f);
+  EXPECT_GT(to_centre, 1.0f);
+}
+
 TEST(ProbeLights, TwoLampsSideBySideAreMeasuredApart) {
   // 10 degrees apart: each within the other's search cone, but not its region.
   const Vec3 a = 2.0f * Vec3(std::sin(radians(-5.0f)), std::cos(radians(-5.0f)), 0.0f);

@@ -164,6 +164,19 @@ std::vector<ProbeSighting> probe_sightings(const RayScene& rays, const std::vect
   return sightings;
 }
 
+// The line from the probe through where it sees the light. The probe
+// measures the middle of what a light fills, not its centre: the line is
+// turned by how far apart the two are where it passes nearest the light as
+// given (a slanted rectangle's near half fills more of the view).
+SightLine line_of_sight(const ProbeSighting& sighting, const Light& given) {
+  SightLine line{sighting.probe->position, sighting.seen.direction, std::nullopt};
+  Light near = given;
+  near.position = line.nearest_to(given.position);
+  const Vec3 centre = (near.position - line.origin).normalized();
+  line.direction = (line.direction + centre - seen_middle(near, line.origin)).normalized();
+  return line;
+}
+
 // The emission that gives what the probes saw (their mean) with the light
 // where `light` has it: a lamp placed farther from the probe must be brighter
 // to deliver the same irradiance there.
@@ -370,6 +383,24 @@ class LightingFit {
     return placed.emission();
   }
 
+  // The line from the first probe that measured light `index` through it;
+  // where a second probe elsewhere sees it too, the point the two lines
+  // pass nearest.
+  std::optional<SightLine> sight_line(size_t index) const {
+    const auto k = std::find(light_index_.begin(), light_index_.end(), index) - light_index_.begin();
+    if (size_t(k) >= sightings_.size() || sightings_[size_t(k)].empty()) return std::nullopt;
+    const std::vector<ProbeSighting>& seen = sightings_[size_t(k)];
+    const Light& given = scene_.lights[index];
+    SightLine line = line_of_sight(seen.front(), given);
+    for (size_t j = 1; j < seen.size() && !line.crossing; ++j) {
+      const SightLine other = line_of_sight(seen[j], given);
+      constexpr float kApartM = 0.1f;  // probes closer than this see the light along nearly one line
+      if ((other.origin - line.origin).norm() > kApartM)
+        line.crossing = triangulate(line.origin, line.direction, other.origin, other.direction);
+    }
+    return line;
+  }
+
   // The lights the probes measured, their emission where they were placed.
   void follow_placement() {
     for (size_t k = 0; k < light_index_.size(); ++k)
@@ -441,10 +472,12 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
     const EmissionOfPlaced emission_of = [&fit](size_t index, const Light& placed) {
       return fit.emission_when_placed(index, placed);
     };
+    const SightLineOf sight_line_of = [&fit](size_t index) { return fit.sight_line(index); };
     constexpr int kPlacementPasses = 2;
     for (int pass = 0; pass < kPlacementPasses; ++pass) {
-      std::vector<PlacedLight> placed = refine_light_placement(
-          fit.result.scene, rays, gbuffer, fit.indirect_illumination(), emission_of, options.placement, progress);
+      std::vector<PlacedLight> placed =
+          refine_light_placement(fit.result.scene, rays, gbuffer, fit.indirect_illumination(), emission_of,
+                                 sight_line_of, options.placement, progress);
       const bool moved = std::any_of(placed.begin(), placed.end(),
                                      [](const PlacedLight& p) { return p.moved_m() > 0.0f || p.turned_deg() > 0.0f; });
       if (pass > 0 && !moved) break;

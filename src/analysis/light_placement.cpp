@@ -1,5 +1,6 @@
 #include "analysis/light_placement.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <array>
@@ -106,13 +107,21 @@ class LightPlacement {
   static constexpr int kMaxDimensions = 5;
   using Point = std::array<float, kMaxDimensions>;
 
-  LightPlacement(const Light& light, const RayScene& rays, const PlacementOptions& options)
-      : light_(light), metres_(options.position_step), degrees_(options.direction_step_deg) {
+  LightPlacement(const Light& light, const std::optional<SightLine>& sight, const RayScene& rays,
+                 const PlacementOptions& options)
+      : light_(light),
+        sight_(moves() ? sight : std::nullopt),
+        metres_(options.position_step),
+        degrees_(options.direction_step_deg) {
     const Vec3 d = light.direction.normalized();
     across_u_ = d.unitOrthogonal();
     across_v_ = d.cross(across_u_);
     SurfacePoint hit;
     if (keeps_aim() && rays.intersect(light.position, d, hit)) aim_distance_ = hit.distance;
+    aimed_from_ = light.position;
+    // On the sight line, from where a second probe sees it or else the point
+    // of it nearest the given place.
+    if (sight_) light_.position = sight_->start_for(light.position);
   }
   bool moves() const { return light_.type != LightType::directional; }
   bool turns() const { return light_.type != LightType::point; }
@@ -122,7 +131,7 @@ class LightPlacement {
   // keeps facing the way it faced (a ceiling panel given 20 cm off and tilted
   // back towards its old aim as it moved was found nowhere near).
   bool keeps_aim() const { return light_.type == LightType::spot; }
-  int dimensions() const { return (moves() ? 3 : 0) + (turns() ? 2 : 0); }
+  int dimensions() const { return position_dimensions() + (turns() ? 2 : 0); }
   bool is_turn(size_t axis) const { return turns() && axis < 2; }
 
   Light at(const Point& x) const {
@@ -136,17 +145,24 @@ class LightPlacement {
     }
     if (moves()) {
       const size_t axis = turns() ? 2 : 0;
-      l.position += metres_ * Vec3(x[axis], x[axis + 1], x[axis + 2]);
-      if (keeps_aim()) l.direction = (light_.position + aim_distance_ * turned / turned.dot(d) - l.position).normalized();
+      l.position += metres_ * (sight_ ? Vec3(x[axis] * sight_->direction) : Vec3(x[axis], x[axis + 1], x[axis + 2]));
+      if (keeps_aim()) l.direction = (aimed_from_ + aim_distance_ * turned / turned.dot(d) - l.position).normalized();
     }
     return l;
   }
 
  private:
+  // A light a probe sees moves along its sight line only: the probe fixes
+  // its direction from there to a pixel, far closer than the photo's
+  // shading does across a closed room; the photo gives the distance.
+  int position_dimensions() const { return !moves() ? 0 : sight_ ? 1 : 3; }
+
   Light light_;
+  std::optional<SightLine> sight_;
   float metres_, degrees_;
   Vec3 across_u_, across_v_;
   float aim_distance_ = 1.0f;  // m, along the direction to what a spot points at
+  Vec3 aimed_from_;            // where it was given, pointing there
 };
 
 // The lights being placed together: where each stands in its search space,
@@ -176,6 +192,8 @@ class Placements {
     return a;
   }
   const Colours& illumination() const { return total_; }
+  size_t size() const { return lights_.size(); }
+  const LightPlacement& placement(size_t light) const { return lights_[light]; }
   const LightPlacement::Point& at(size_t light) const { return x_[light]; }
   Light light(size_t k) const { return lights_[k].at(x_[k]); }
 
@@ -230,15 +248,43 @@ void coordinate_search(Placements& placements, const PlanePairs& pairs, float st
   }
 }
 
+// A light that moved and turned keeps its turn only where the turn alone
+// lowers the mismatch by `significant` standard errors: carried along by the
+// move's significance, a ceiling panel brought back to within a centimetre
+// of its place was also tilted 2.9 degrees, for nothing the photo shows
+// clearly, and its albedo lost 1.4 dB by the tilt.
+void keep_only_significant_turns(Placements& placements, const PlanePairs& pairs, double significant, int width,
+                                 int height) {
+  for (size_t k = 0; k < placements.size(); ++k) {
+    LightPlacement::Point untilted = placements.at(k);
+    if (!placements.placement(k).moves() || !placements.placement(k).turns() ||
+        (untilted[0] == 0.0f && untilted[1] == 0.0f))
+      continue;
+    untilted[0] = untilted[1] = 0.0f;
+    auto [total, direct] = placements.trial(k, untilted);
+    const double turn = improvement_in_standard_errors(pairs, total, placements.illumination(), width, height);
+    if (turn >= significant) continue;
+    spdlog::info("fit: {}'s turn lowers the shadow mismatch by {:.1f} standard errors only: it is not turned",
+                 placements.light(k).name, turn);
+    placements.move(k, untilted, std::move(total), std::move(direct));
+  }
+}
+
 }  // namespace
 
 float PlacedLight::moved_m() const { return (position_after - position_before).norm(); }
 
 float PlacedLight::turned_deg() const { return angle_degrees(direction_before, direction_after); }
 
+Vec3 SightLine::nearest_to(const Vec3& p) const {
+  constexpr float kNearest = 0.05f;  // m: a light is not placed inside the probe
+  return origin + std::max(kNearest, (p - origin).dot(direction)) * direction;
+}
+
 std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
                                                 const Image& indirect, const EmissionOfPlaced& emission_of,
-                                                const PlacementOptions& options, Progress& progress) {
+                                                const SightLineOf& sight_line_of, const PlacementOptions& options,
+                                                Progress& progress) {
   const PixelSurfaces surfaces = PixelSurfaces::central_samples(gbuffer);
   const Colours& photo = scene.photo.pixels;
 
@@ -261,8 +307,11 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
     for (size_t i = 0; i < lit.size(); ++i) lit[i] = unit.pixels[i].x() * emission;  // a white light's is grey
     return lit;
   };
-  std::vector<Colours> direct;
-  for (size_t k = 0; k < enabled.size(); ++k) direct.push_back(direct_of(k, scene.lights[enabled[k]]));
+  std::vector<Colours> given_direct;
+  for (size_t k = 0; k < enabled.size(); ++k) given_direct.push_back(direct_of(k, scene.lights[enabled[k]]));
+  Colours given = indirect.pixels;  // the illumination of the lights where they were given
+  for (const Colours& d : given_direct)
+    for (size_t i = 0; i < given.size(); ++i) given[i] += d[i];
 
   struct Level {
     int gap;
@@ -272,10 +321,23 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
   std::vector<PlanePairs> pairs;
   for (const Level& level : kLevels) pairs.push_back(plane_pairs(gbuffer, photo, level.gap));
 
+  // The search starts where each light was given, or, for one a probe sees,
+  // at the point of its sight line nearest that.
   std::vector<LightPlacement> searched;
-  for (const size_t i : enabled) searched.emplace_back(scene.lights[i], rays, options);
+  std::vector<Colours> direct;
+  for (size_t k = 0; k < enabled.size(); ++k) {
+    const Light& light = scene.lights[enabled[k]];
+    const std::optional<SightLine> sight = sight_line_of(enabled[k]);
+    searched.emplace_back(light, sight, rays, options);
+    const Light first = searched.back().at({});
+    direct.push_back(first.position == light.position ? given_direct[k] : direct_of(k, first));
+    if (first.position != light.position)
+      spdlog::info(
+          "fit: {} is searched for along the line a probe sees it along, from {:.1f} cm from where it was "
+          "given",
+          light.name, 100.0f * (first.position - light.position).norm());
+  }
   Placements placements(searched, direct, indirect.pixels, direct_of);
-  const Placements start = placements;
   int dimensions = 0;
   for (const auto& l : searched) dimensions += l.dimensions();
   const int max_evaluations = options.evaluations_per_dimension * dimensions;
@@ -287,22 +349,32 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
   progress.end();
 
   // The narrow gap sees noise the wide one averages out, and a flat
-  // objective lets a light wander far for nothing: the lights stay unless
-  // the wide gap's mismatch falls by kSignificant standard errors. (In a
-  // closed room a lamp in its true place was moved 30 cm for a fall of 0.3 %,
-  // under one standard error.)
+  // objective lets a light wander far for nothing: the lights stay where
+  // they were given unless the wide gap's mismatch falls by kSignificant
+  // standard errors. (In a closed room a lamp in its true place was moved
+  // 30 cm for a fall of 0.3 %, under one standard error; and a lamp whose
+  // sight line runs along the room's wall is placed on it no better.)
   constexpr double kSignificant = 2.0;
-  const double before = mismatch(pairs.front(), start.illumination());
+  const double before = mismatch(pairs.front(), given);
   double after = mismatch(pairs.front(), placements.illumination());
-  const double significance = improvement_in_standard_errors(pairs.front(), start.illumination(),
-                                                             placements.illumination(), gbuffer.width(),
-                                                             gbuffer.height());
-  if (significance < kSignificant) {
-    if (after < before)
-      spdlog::info("fit: the lights' best placement lowers the shadow mismatch by {:.1f} standard errors only "
-                   "({:.4f} -> {:.4f}): they stay",
-                   significance, before, after);
-    placements = start, after = before;
+  const double significance = improvement_in_standard_errors(pairs.front(), given, placements.illumination(),
+                                                             gbuffer.width(), gbuffer.height());
+  const bool stay = significance < kSignificant;
+  if (stay) {
+    if (after < before) {
+      std::string moves;
+      for (size_t k = 0; k < enabled.size(); ++k)
+        moves += fmt::format("; {} {:.1f} cm away", scene.lights[enabled[k]].name,
+                             100.0f * (placements.light(k).position - scene.lights[enabled[k]].position).norm());
+      spdlog::info(
+          "fit: the lights' best placement lowers the shadow mismatch by {:.1f} standard errors only "
+          "({:.4f} -> {:.4f}{}): they stay",
+          significance, before, after, moves);
+    }
+    after = before;
+  } else {
+    keep_only_significant_turns(placements, pairs.front(), kSignificant, gbuffer.width(), gbuffer.height());
+    after = mismatch(pairs.front(), placements.illumination());
   }
 
   std::vector<PlacedLight> placed;
@@ -314,7 +386,7 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
     report.direction_before = light.direction.normalized();
     report.objective_before = before;
     report.objective_after = after;
-    light = placements.light(k);
+    if (!stay) light = placements.light(k);
     report.position_after = light.position;
     report.direction_after = light.direction.normalized();
     spdlog::info("fit: {} moved {:.3g} m, turned {:.3g} degrees (shadow mismatch {:.4f} -> {:.4f})", light.name,

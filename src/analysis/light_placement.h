@@ -22,6 +22,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,12 +60,27 @@ struct PlacedLight {
 using EmissionOfPlaced = std::function<Vec3(size_t index, const Light& placed)>;
 inline Vec3 own_emission(size_t, const Light& placed) { return placed.emission(); }
 
+// The line from a probe through where it sees a light (LightInProbe).
+struct SightLine {
+  Vec3 origin, direction;                // the probe's position; unit
+  std::optional<Vec3> crossing;          // where a second probe's line passes nearest, if one sees it
+  Vec3 nearest_to(const Vec3& p) const;  // the point of the line nearest p, in front of the probe
+  // Where a search along the line starts for a light given at p: the
+  // crossing, or the point of the line nearest p.
+  Vec3 start_for(const Vec3& p) const { return crossing ? nearest_to(*crossing) : nearest_to(p); }
+};
+// The line scene.lights[index] is seen along, if a probe sees it.
+using SightLineOf = std::function<std::optional<SightLine>(size_t index)>;
+inline std::optional<SightLine> no_sight_line(size_t) { return std::nullopt; }
+
 // Moves (and turns) the enabled lights of `scene` to where their shadows and
-// a spot's cone best match the photo. `indirect`: the illumination (white
+// a spot's cone best match the photo; a light seen along a sight line is
+// moved along it only, from SightLine::start_for where it was given. `indirect`: the illumination (white
 // surfaces) of the scene's lighting as it is, less the light straight from
 // the lights: the environment and the bounce light, held fixed.
 std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
                                                 const Image& indirect, const EmissionOfPlaced& emission_of,
-                                                const PlacementOptions& options, Progress& progress);
+                                                const SightLineOf& sight_line_of, const PlacementOptions& options,
+                                                Progress& progress);
 
 }  // namespace relight

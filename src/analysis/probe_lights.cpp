@@ -61,6 +61,24 @@ constexpr float kHalf = 0.5f;        // of the brightest pixel: the light's own 
 
 }  // namespace
 
+Vec3 seen_middle(const Light& light, const Vec3& from) {
+  const Vec3 centre = (light.position - from).normalized();
+  if (light.type != LightType::area) return centre;
+  // The rectangle's irradiance at `from` on a surface facing its centre, over
+  // a 16 x 16 grid of samples; the cosine there taken back out, each
+  // sample's weight is its solid angle.
+  constexpr int kGrid = 16;
+  const LightSampler sampler(light);
+  Vec3 sum = Vec3::Zero();
+  for (int i = 0; i < kGrid; ++i)
+    for (int j = 0; j < kGrid; ++j) {
+      const LightSample s = sampler.sample(from, centre, Vec2((i + 0.5f) / kGrid, (j + 0.5f) / kGrid));
+      const float cosine = s.direction.dot(centre);
+      if (cosine > 0.0f) sum += luminance(s.irradiance) / cosine * s.direction;
+    }
+  return sum.norm() > 0.0f ? Vec3(sum.normalized()) : centre;
+}
+
 std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Light& light) {
   Vec3 expected;
   float radius;

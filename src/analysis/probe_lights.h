@@ -27,6 +27,12 @@ struct LightInProbe {
 // out from its surroundings).
 std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Light& light);
 
+// The middle, by solid angle, of what the light fills seen from `from`:
+// what LightInProbe::direction measures of an evenly bright light. For a
+// rectangle seen at a slant it is not the direction of its centre (its near
+// half fills more of the view).
+Vec3 seen_middle(const Light& light, const Vec3& from);
+
 // The probe with every enabled light's region replaced by its surroundings.
 Probe remove_lights_from_probe(const Probe& probe, const std::vector<Light>& lights);
 

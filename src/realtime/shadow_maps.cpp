@@ -234,7 +234,7 @@ std::unique_ptr<GlRelighter> GlRelighter::open(const TriangleMesh& mesh, const P
   glGenVertexArrays(1, &state->screen_vao);
 
   // The view: what each pixel sees, as textures (top row first).
-  std::vector<float> position(size_t(w) * h * 4, 0.0f), normal(size_t(w) * h * 3), gnormal(size_t(w) * h * 4);
+  std::vector<float> position(size_t(w) * h * 4, 0.0f), normal(size_t(w) * h * 4), gnormal(size_t(w) * h * 4);
   for (size_t i = 0; i < surfaces.surface.size(); ++i) {
     const SurfacePoint& s = surfaces.surface[i];
     if (surfaces.hit[i]) {
@@ -242,14 +242,15 @@ std::unique_ptr<GlRelighter> GlRelighter::open(const TriangleMesh& mesh, const P
       position[4 * i + 3] = 1.0f;
     }
     for (int c = 0; c < 3; ++c) {
-      normal[3 * i + c] = s.normal[c];
+      normal[4 * i + c] = s.normal[c];
       gnormal[4 * i + c] = s.geometric_normal[c];
     }
+    normal[4 * i + 3] = s.lift;
     gnormal[4 * i + 3] = s.distance;
   }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   state->position_tex = gl::float_texture(w, h, GL_RGBA32F, GL_RGBA, position.data());
-  state->normal_tex = gl::float_texture(w, h, GL_RGB32F, GL_RGB, normal.data());
+  state->normal_tex = gl::float_texture(w, h, GL_RGBA32F, GL_RGBA, normal.data());
   state->gnormal_tex = gl::float_texture(w, h, GL_RGBA32F, GL_RGBA, gnormal.data());
 
   // Shadow maps: a perspective one, the sun's, a cube, reused by every light sample.

@@ -107,7 +107,6 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
             const LightSample s = sampler.sample(p->position, p->normal, u);
             if (s.irradiance.isZero()) continue;
             if (ratio) row.offered[size_t(x)] += s.irradiance.sum();
-            if (s.direction.dot(p->geometric_normal) <= 0.0f) continue;  // below the facet: blocked
             const int slot = row.packet.add(scene.shadow_ray(*p, s.direction, s.distance));
             row.irradiance[slot] = s.irradiance;
             row.column[slot] = x;

@@ -35,7 +35,6 @@ Vec3 Integrator::environment(const Vec3& origin, const Vec3& dir) const {
 
 Vec3 Integrator::unoccluded(const SurfacePoint& p, const LightSample& s) const {
   if (s.irradiance.isZero()) return Vec3::Zero();
-  if (s.direction.dot(p.geometric_normal) <= 0.0f) return Vec3::Zero();  // below the actual surface
   const ShadowRay ray = scene_.shadow_ray(p, s.direction, s.distance);
   return scene_.occluded(ray.origin, ray.dir, ray.tmax) ? Vec3::Zero() : s.irradiance;
 }
@@ -63,7 +62,7 @@ Vec3 Integrator::from_pooled_lights(const SurfacePoint& p, Rng& rng) const {
       float offset, density;
       const int i = pooled_power_.sample(rng.uniform(), offset, density);
       const LightSample s = pooled_lights_[size_t(i)].sample(p.position, p.normal, rng.uniform2());
-      if (s.irradiance.isZero() || s.direction.dot(p.geometric_normal) <= 0.0f) continue;
+      if (s.irradiance.isZero()) continue;
       const float target = luminance(s.irradiance);
       const float weight = target / (density / lights);  // target / the probability of drawing light i
       total_weight += weight;
@@ -83,9 +82,11 @@ Vec3 Integrator::from_environment(const SurfacePoint& p, const ProbeEnvironment*
     const Vec2 u = rng.uniform2();
     if (env.sample(probe, u, d, pdf)) {
       const float cos_theta = p.normal.dot(d);
-      if (cos_theta > 0.0f && d.dot(p.geometric_normal) > 0.0f &&
-          !scene_.occluded(scene_.offset_origin(p, d), d, std::numeric_limits<float>::infinity())) {
-        const float weight = power_heuristic(pdf, cos_theta * kInvPi);
+      const ShadowRay ray = scene_.shadow_ray(p, d, std::numeric_limits<float>::infinity());
+      if (cos_theta > 0.0f && !scene_.occluded(ray.origin, ray.dir, ray.tmax)) {
+        // Below the facet the path's bounce is not cast (it would leave
+        // through the facet), so this sample is the only one that reaches d.
+        const float weight = d.dot(p.geometric_normal) > 0.0f ? power_heuristic(pdf, cos_theta * kInvPi) : 1.0f;
         sum += env.radiance(probe, d) * (cos_theta * kInvPi / pdf * weight);
       }
     }

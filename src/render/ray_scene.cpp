@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -23,6 +24,27 @@ struct RayScene::Embree {
 namespace {
 void embree_error(void*, RTCError code, const char* message) {
   spdlog::error("Embree error {}: {}", int(code), message ? message : "");
+}
+
+// How far above the facet, along its normal `ng`, the smooth surface through
+// triangle t's vertices with their normals lies at the point p of
+// barycentrics b: p projected onto each vertex's tangent plane, the three
+// projections interpolated (Hanika 2021). 0 where it lies below. A vertex
+// whose normal leans more than kMostLean from the facet's is on a hard edge
+// whose normals were averaged (a box's corner, a column's rim), not on a
+// curved surface: its tangent plane would lift the ray's start through the
+// geometry beside it (a column's capital stopped shadowing its top), so it
+// keeps the facet's plane.
+float smooth_surface_lift(const TriangleMesh& mesh, const Vec3& p, const Vec3& ng, const std::array<uint32_t, 3>& t,
+                          const Vec3& b) {
+  constexpr float kMostLean = 0.866f;  // cos 30 degrees
+  Vec3 smooth = Vec3::Zero();
+  for (int i = 0; i < 3; ++i) {
+    const Vec3& vertex = mesh.positions[t[i]];
+    const Vec3& n = mesh.normals[t[i]];
+    smooth += b[i] * (std::abs(n.dot(ng)) < kMostLean ? p : Vec3(p - (p - vertex).dot(n) * n));
+  }
+  return std::max(0.0f, (smooth - p).dot(ng));
 }
 }  // namespace
 
@@ -84,6 +106,7 @@ bool RayScene::intersect(const Vec3& origin, const Vec3& dir, SurfacePoint& hit,
       ns.normalize();
       hit.normal = ns.dot(ng) < 0.0f ? Vec3(-ns) : ns;
     }
+    hit.lift = smooth_surface_lift(mesh_, hit.position, ng, t, Vec3(1.0f - u - v, u, v));
   }
   return true;
 }

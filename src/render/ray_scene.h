@@ -19,6 +19,10 @@ struct SurfacePoint {
   Vec3 geometric_normal;  // the triangle's normal
   uint32_t prim = 0;      // triangle index in the mesh
   float distance = 0.0f;  // from the query origin
+  // How far above the facet (along geometric_normal) the smooth surface its
+  // vertices' normals describe lies here; 0 where it lies below or the mesh
+  // has no normals. Shadow rays start there (RayScene::shadow_ray).
+  float lift = 0.0f;
 };
 
 // A segment for an occlusion query: origin + t dir, t in (0, tmax). A ray
@@ -81,18 +85,27 @@ class RayScene {
   // A ray origin just off the surface on the side of `towards`, so that the
   // ray does not hit the surface it starts on.
   Vec3 offset_origin(const SurfacePoint& p, const Vec3& towards) const {
-    const float scale = epsilon_ + 1e-5f * p.position.cwiseAbs().maxCoeff();
+    const float scale = offset_scale(p);
     const Vec3& ng = p.geometric_normal;
     return p.position + (ng.dot(towards) >= 0.0f ? scale : -scale) * ng;
   }
   // The shadow ray from p towards a point `distance` away along the unit
   // `dir` (infinite distance: a direction), starting just off the surface and
-  // stopping just short of the point.
+  // stopping just short of the point. Towards the side the shading normal
+  // faces it starts on the smooth surface the vertices' normals describe
+  // (`lift` above the facet; Hanika, "Hacking the shadow terminator", 2021):
+  // a coarse or slightly misplaced facet, tilted against its normals, then
+  // neither shadows itself nor cuts off the light that grazes it, and light
+  // below the facet but above the smooth surface reaches the point where the
+  // facet does not block it.
   ShadowRay shadow_ray(const SurfacePoint& p, const Vec3& dir, float distance) const {
-    return {offset_origin(p, dir), dir, std::isfinite(distance) ? distance * (1.0f - 1e-4f) : distance};
+    const Vec3 origin = dir.dot(p.normal) > 0.0f ? Vec3(p.position + (offset_scale(p) + p.lift) * p.geometric_normal)
+                                                 : offset_origin(p, dir);
+    return {origin, dir, std::isfinite(distance) ? distance * (1.0f - 1e-4f) : distance};
   }
   // Offset distance used for origins and shadow-ray ends (scales with the scene).
   float epsilon() const { return epsilon_; }
+  float offset_scale(const SurfacePoint& p) const { return epsilon_ + 1e-5f * p.position.cwiseAbs().maxCoeff(); }
 
   const TriangleMesh& mesh() const { return mesh_; }
 

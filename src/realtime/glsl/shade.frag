@@ -7,7 +7,7 @@
 const int light_type = LIGHT_TYPE;    // 0 point, 1 spot, 2 area, 3 sun
 const int pcf_radius = PCF_RADIUS;
 uniform sampler2D surface_position;   // xyz; w = 1 where the pixel sees a surface
-uniform sampler2D surface_normal;     // shading normal
+uniform sampler2D surface_normal;     // shading normal; w: SurfacePoint::lift
 uniform sampler2D surface_gnormal;    // the triangle's normal; w: distance from the camera
 uniform samplerCubeShadow cube_map;   // MAP_KIND 0
 uniform sampler2DShadow flat_map;     // MAP_KIND 1 (perspective), 2 (orthographic)
@@ -140,9 +140,13 @@ void main() {
     color = vec4(0.0);
     return;
   }
-  vec3 n = texelFetch(surface_normal, pixel, 0).xyz;
+  vec4 normal_lift = texelFetch(surface_normal, pixel, 0);
+  vec3 n = normal_lift.xyz;
   vec3 ng = gnormal.xyz;
   vec3 dir;
   vec3 e = irradiance(position.xyz, n, dir);
-  color = vec4(dot(dir, ng) > 0.0 ? e * (visibility(position.xyz, ng) / PI) : vec3(0.0), 1.0);
+  // As the CPU's shadow rays (RayScene::shadow_ray): looked up from the
+  // smooth surface the vertices' normals describe, with no test of the
+  // facet's own normal.
+  color = vec4(e * (visibility(position.xyz + normal_lift.w * ng, ng) / PI), 1.0);
 }
