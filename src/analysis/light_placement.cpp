@@ -165,6 +165,13 @@ class LightPlacement {
   Vec3 aimed_from_;            // where it was given, pointing there
 };
 
+// The illumination `rest` and the lights' `direct` light give together.
+Colours with_direct(Colours rest, const std::vector<Colours>& direct) {
+  for (const Colours& d : direct)
+    for (size_t i = 0; i < rest.size(); ++i) rest[i] += d[i];
+  return rest;
+}
+
 // The lights being placed together: where each stands in its search space,
 // its direct light there, and the illumination all of them give with the rest.
 // Moving one light re-renders only that light's direct light.
@@ -175,11 +182,8 @@ class Placements {
       : lights_(std::move(lights)),
         direct_(std::move(direct)),
         x_(lights_.size()),
-        total_(std::move(rest)),
-        direct_of_(direct_of) {
-    for (const auto& d : direct_)
-      for (size_t i = 0; i < total_.size(); ++i) total_[i] += d[i];
-  }
+        total_(with_direct(std::move(rest), direct_)),
+        direct_of_(direct_of) {}
 
   // Every search axis as (light, axis of its space), the lights' turns first:
   // a spot's cone, the widest edge it makes, is set by where it points.
@@ -309,9 +313,7 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
   };
   std::vector<Colours> given_direct;
   for (size_t k = 0; k < enabled.size(); ++k) given_direct.push_back(direct_of(k, scene.lights[enabled[k]]));
-  Colours given = indirect.pixels;  // the illumination of the lights where they were given
-  for (const Colours& d : given_direct)
-    for (size_t i = 0; i < given.size(); ++i) given[i] += d[i];
+  const Colours given = with_direct(indirect.pixels, given_direct);  // the lights where they were given
 
   struct Level {
     int gap;

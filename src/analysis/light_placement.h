@@ -75,9 +75,10 @@ inline std::optional<SightLine> no_sight_line(size_t) { return std::nullopt; }
 
 // Moves (and turns) the enabled lights of `scene` to where their shadows and
 // a spot's cone best match the photo; a light seen along a sight line is
-// moved along it only, from SightLine::start_for where it was given. `indirect`: the illumination (white
-// surfaces) of the scene's lighting as it is, less the light straight from
-// the lights: the environment and the bounce light, held fixed.
+// moved along it only, from SightLine::start_for where it was given.
+// `indirect`: the illumination (white surfaces) of the scene's lighting as
+// it is, less the light straight from the lights: the environment and the
+// bounce light, held fixed.
 std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
                                                 const Image& indirect, const EmissionOfPlaced& emission_of,
                                                 const SightLineOf& sight_line_of, const PlacementOptions& options,
