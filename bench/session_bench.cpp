@@ -1,5 +1,6 @@
-// The interactive engine: frame time while dragging one light of four, for
-// each backend at 640x480 and 1280x720, and the time the view takes to
+// The interactive engine: frame time while dragging one light of eight (one
+// of each type in turn), for each backend at 640x480 and 1280x720, and the
+// time the view takes to
 // converge (to the render of `relight render`) once the light is let go;
 // and one light's render by each backend alone. The CPU column is the
 // process's CPU time (all threads) per frame: on a busy machine, half of it
@@ -61,13 +62,14 @@ struct Fixture {
       scene.photo = Image(640, 480, Vec3::Constant(0.2f));
     }
     analysed = quick_analysis(std::move(scene));
-    rig = four_lights();
+    rig = eight_lights();
   }
   const Scene& scene() const { return analysed->scene(); }
 
-  // A point and a spot (the ones dragged), an area light and a soft point,
-  // placed around what the camera looks at.
-  Rig four_lights() const {
+  // One light of each type (the ones dragged: a point, a spot, an area
+  // light, a soft point and a sun), and three more to compose with, placed
+  // around what the camera looks at.
+  Rig eight_lights() const {
     const CameraSpec& camera = scene().camera.spec();
     const Vec3 target = camera.look_at, to_camera = camera.position - target;
     const float d = to_camera.norm();
@@ -101,7 +103,24 @@ struct Fixture {
     soft.position = front - 0.4f * d * side + 0.1f * d * up;
     soft.radius = 0.03f * d;
     soft.color = Vec3(1.0f, 0.7f, 0.4f);
-    r.lights = {point, spot, area, soft};
+    Light sun;
+    sun.type = LightType::directional;
+    sun.name = "sun";
+    sun.position = target + d * (side + up);  // where the drag circles; a sun's light comes from its direction
+    sun.direction = (target - sun.position).normalized();
+    sun.irradiance = 10.0f;
+    sun.angle_deg = 0.5f;
+    Light fill = point, rim = spot, top = area;
+    fill.name = "fill";
+    fill.position = front - 0.2f * d * side;
+    fill.power *= 0.3f;
+    rim.name = "rim";
+    rim.position = target - 0.3f * to_camera + 0.5f * d * up;
+    rim.direction = (target - rim.position).normalized();
+    top.name = "top";
+    top.position = target + 0.8f * d * up;
+    top.direction = -up;
+    r.lights = {point, spot, area, soft, sun, fill, rim, top};
     return r;
   }
 };
@@ -140,7 +159,8 @@ RelightSession& session(Backend backend, int size) {
   return *s;
 }
 
-// Light `index` one step further around a circle about where it started.
+// Light `index` one step further around a circle about where it started (a
+// sun turned with it: its direction follows the circle's point).
 Light dragged(int index, int step) {
   const Fixture& f = fixture();
   Light light = f.rig.lights[size_t(index)];
@@ -149,12 +169,14 @@ Light dragged(int index, int step) {
   Vec3 a, b;
   orthonormal_basis(f.scene().camera.spec().up.normalized(), a, b);
   light.position += radius * (std::cos(angle) * a + std::sin(angle) * b);
+  if (light.type == LightType::directional)
+    light.direction = (f.scene().camera.spec().look_at - light.position).normalized();
   return light;
 }
 
 // Arguments: backend (0 cpu, 1 gl), size (0: 640x480, 1: 1280x720), the
-// light dragged (0 point, 1 spot).
-void BM_DragOneLightOfFour(benchmark::State& state) {
+// light dragged (0 point, 1 spot, 2 area, 3 soft point, 4 sun).
+void BM_DragOneLightOfEight(benchmark::State& state) {
   const Backend backend = state.range(0) ? Backend::gl : Backend::cpu;
   const int size = int(state.range(1)), index = int(state.range(2));
   RelightSession& s = session(backend, size);
@@ -177,8 +199,8 @@ void BM_DragOneLightOfFour(benchmark::State& state) {
   state.SetLabel(std::string(to_string(backend)) + " " + std::to_string(kSizes[size][0]) + "x" +
                  std::to_string(kSizes[size][1]) + " dragging the " + fixture().rig.lights[size_t(index)].name);
 }
-BENCHMARK(BM_DragOneLightOfFour)
-    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1}})
+BENCHMARK(BM_DragOneLightOfEight)
+    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1, 2, 3, 4}})
     ->Iterations(60)
     ->MeasureProcessCPUTime()
     ->UseManualTime()
@@ -187,7 +209,7 @@ BENCHMARK(BM_DragOneLightOfFour)
 // One light's interactive render by a backend alone, outside a session: how
 // much of a frame is the backend's (the rest is composing the frame and
 // handing it over). Real time and the process's CPU time (both cores).
-// Arguments as BM_DragOneLightOfFour's.
+// Arguments as BM_DragOneLightOfEight's.
 void BM_BackendRender(benchmark::State& state) {
   const int size = int(state.range(1)), index = int(state.range(2));
   Fixture& f = fixture();
@@ -195,6 +217,7 @@ void BM_BackendRender(benchmark::State& state) {
   const AnalysedScene& a = *f.analysed;
   const RelightView view(a, kSizes[size][0], kSizes[size][1]);
   std::unique_ptr<DirectLightBackend> backend;
+  CpuDirectLight* cpu = nullptr;
   if (state.range(0)) {
     std::string why;
     backend = GlRelighter::open(a.scene().mesh, view.surfaces(), {}, why);
@@ -204,15 +227,24 @@ void BM_BackendRender(benchmark::State& state) {
     }
   } else {
     backend = std::make_unique<CpuDirectLight>(view.surfaces(), a.rays());
+    cpu = static_cast<CpuDirectLight*>(backend.get());
   }
   Image out;
   int step = 0;
-  for (auto _ : state) backend->render(unit_light(dragged(index, ++step)), out);
+  size_t rays = 0;
+  for (auto _ : state) {
+    const Light light = unit_light(dragged(index, ++step));
+    if (cpu)
+      rays += cpu->render_counting_rays(light, out);
+    else
+      backend->render(light, out);
+  }
+  if (cpu) state.counters["rays_per_pixel"] = double(rays) / double(state.iterations() * out.pixels.size());
   state.SetLabel(std::string(backend->name()) + " " + std::to_string(view.width()) + "x" +
                  std::to_string(view.height()) + " " + f.rig.lights[size_t(index)].name);
 }
 BENCHMARK(BM_BackendRender)
-    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1}})
+    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1, 2, 3, 4}})
     ->Iterations(30)
     ->MeasureProcessCPUTime()
     ->UseRealTime()

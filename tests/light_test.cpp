@@ -15,6 +15,7 @@
 
 #include "core/sampling.h"
 #include "render/direct_light.h"
+#include "render/gbuffer.h"
 #include "render/integrator.h"
 #include "render/ray_scene.h"
 #include "scene/environment.h"
@@ -26,17 +27,19 @@ namespace {
 
 constexpr double kPiD = std::numbers::pi;
 
-// Appends an axis-aligned square (two triangles) of half-size `half`
-// centred on `centre`, lying in the plane z = centre.z().
-void add_square(TriangleMesh& mesh, const Vec3& centre, float half) {
+// Appends an axis-aligned rectangle (two triangles) of half-sizes `half_x`
+// and `half_y` centred on `centre`, lying in the plane z = centre.z().
+void add_rectangle(TriangleMesh& mesh, const Vec3& centre, float half_x, float half_y) {
   const uint32_t base = uint32_t(mesh.positions.size());
-  mesh.positions.push_back(centre + Vec3(-half, -half, 0));
-  mesh.positions.push_back(centre + Vec3(half, -half, 0));
-  mesh.positions.push_back(centre + Vec3(half, half, 0));
-  mesh.positions.push_back(centre + Vec3(-half, half, 0));
+  mesh.positions.push_back(centre + Vec3(-half_x, -half_y, 0));
+  mesh.positions.push_back(centre + Vec3(half_x, -half_y, 0));
+  mesh.positions.push_back(centre + Vec3(half_x, half_y, 0));
+  mesh.positions.push_back(centre + Vec3(-half_x, half_y, 0));
   mesh.triangles.push_back({base + 0, base + 1, base + 2});
   mesh.triangles.push_back({base + 0, base + 2, base + 3});
 }
+
+void add_square(TriangleMesh& mesh, const Vec3& centre, float half) { add_rectangle(mesh, centre, half, half); }
 
 TriangleMesh plane_mesh() {
   TriangleMesh mesh;
@@ -769,6 +772,92 @@ TEST(DirectLight, RendersIntoAnImageMovedFrom) {
   ASSERT_EQ(last.size(), 2u);
   EXPECT_GT(last.at(0, 0).x(), last.at(1, 0).x());  // under the lamp, brighter
   EXPECT_EQ(kept.size(), 2u);
+}
+
+// The moving light's checkerboard (CpuDirectLight) seen from above: a floor,
+// a square 0.5 m over it and a strip 1 cm wide 0.6 m over it, whose shadow
+// is about a pixel wide.
+class CheckerboardView : public testing::Test {
+ protected:
+  CheckerboardView() : mesh_(shadowed_floor()), rays_(mesh_) {
+    CameraSpec spec;
+    spec.position = Vec3(0, 0, 3);
+    spec.look_at = Vec3::Zero();
+    spec.up = Vec3(0, 1, 0);
+    spec.vfov_deg = 60.0f;
+    const GBuffer gbuffer(Camera(spec, 160, 120), rays_, 1, 1, "checkerboard view");
+    surfaces_ = PixelSurfaces::central_samples(gbuffer);
+  }
+  static TriangleMesh shadowed_floor() {
+    TriangleMesh mesh = plane_mesh();
+    add_square(mesh, Vec3(-0.6f, -0.3f, 0.5f), 0.25f);
+    add_rectangle(mesh, Vec3(0.7f, 0.0f, 0.6f), 0.005f, 0.8f);
+    return mesh;
+  }
+  // The share of the pixels the two images light differently, and the
+  // largest relative difference where both light a pixel.
+  static std::pair<double, double> differences(const Image& a, const Image& b) {
+    size_t unlike = 0;
+    double largest = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      const float x = a.pixels[i].x(), y = b.pixels[i].x();
+      if ((x > 0.0f) != (y > 0.0f))
+        ++unlike;
+      else if (y > 0.0f)
+        largest = std::max(largest, double(std::abs(x - y) / y));
+    }
+    return {double(unlike) / double(a.size()), largest};
+  }
+
+  TriangleMesh mesh_;
+  RayScene rays_;
+  PixelSurfaces surfaces_;
+};
+
+// A point light: half the rays, and the image every pixel's own ray gives,
+// the strip's shadow a pixel wide included.
+TEST_F(CheckerboardView, GivesWhatEveryPixelsOwnRayGivesWithHalfTheRays) {
+  const Light lamp = point_light(Vec3(0.2f, 0.1f, 2.0f), 100.0f);
+  Image checkerboard, every_ray;
+  CpuDirectLight backend(surfaces_, rays_);
+  const size_t rays = backend.render_counting_rays(lamp, checkerboard);
+  render_direct_light(surfaces_, rays_, lamp, DirectLightSettings{}, every_ray);
+  size_t strip_shadow = 0;  // the strip's shadow, on the floor beside the square's
+  for (int y = 0; y < 120; ++y)
+    for (int x = 100; x < 160; ++x) strip_shadow += every_ray.at(x, y).x() == 0.0f;
+  ASSERT_GT(strip_shadow, 60u);   // a line down the view
+  ASSERT_LT(strip_shadow, 240u);  // at most two pixels wide
+  const auto [unlike, largest] = differences(checkerboard, every_ray);
+  std::printf(
+      "[ figures  ] checkerboard: %.3f rays a pixel, %.4f %% of pixels lit otherwise, largest difference %.2e\n",
+      double(rays) / double(checkerboard.size()), 100.0 * unlike, largest);
+  EXPECT_LT(double(rays), 0.6 * double(checkerboard.size()));
+  EXPECT_EQ(unlike, 0.0);
+  EXPECT_LT(largest, 1e-3);
+}
+
+// Lights with an extent: their soft shadows and (an area light) their
+// light are sampled once a pixel; over the view they give the light of
+// many samples a pixel.
+TEST_F(CheckerboardView, GivesASoftLightsMeanLight) {
+  Light soft = point_light(Vec3(0.2f, 0.1f, 2.0f), 100.0f);
+  soft.radius = 0.15f;
+  Light area = downward_area_light(0.4f, 0.3f, 2.0f, 100.0f);
+  for (const Light& light : {soft, area, sun(Vec3(0.3f, 0.2f, -1.0f), 5.0f, 3.0f)}) {
+    Image checkerboard, many;
+    CpuDirectLight(surfaces_, rays_).render(light, checkerboard);
+    DirectLightSettings dense;
+    dense.light_samples = 256;
+    render_direct_light(surfaces_, rays_, light, dense, many);
+    double sum = 0.0, reference = 0.0;
+    for (size_t i = 0; i < many.size(); ++i) {
+      sum += checkerboard.pixels[i].x();
+      reference += many.pixels[i].x();
+    }
+    std::printf("[ figures  ] checkerboard, %s light: mean %.5f against %.5f\n", to_string(light.type),
+                sum / double(many.size()), reference / double(many.size()));
+    EXPECT_NEAR(sum, reference, 0.01 * reference) << to_string(light.type);
+  }
 }
 
 }  // namespace

@@ -156,8 +156,7 @@ RelightSession::RelightSession(const AnalysedScene& analysed, const Rig& rig, co
       spdlog::warn("{}", backend_note_);
     }
   }
-  if (!fast_)
-    fast_ = std::make_unique<CpuDirectLight>(view_->surfaces(), analysed_.rays(), analysed_.analysis().options.seed);
+  if (!fast_) fast_ = std::make_unique<CpuDirectLight>(view_->surfaces(), analysed_.rays());
 
   environment_scale_ = rig.environment_scale;
   for (const Light& light : rig.lights) {

@@ -151,10 +151,202 @@ bool render_direct_light(const GBuffer& gbuffer, const RayScene& rays, const Lig
   return trace_direct_light(w, gbuffer.height(), spp, surface_at, rays, light, settings, out, cancel);
 }
 
-void CpuDirectLight::render(const Light& light, Image& out) {
-  DirectLightSettings settings;
-  settings.seed = seed_;
-  render_direct_light(surfaces_, rays_, light, settings, out);
+namespace {
+
+// What the checkerboard knows of a pixel's light.
+enum Visibility : uint8_t {
+  kBlocked,  // something is in the way
+  kSeen,     // the light reaches the surface
+  kUnlit,    // no light to shadow: the background, or a surface facing away
+  kOpen,     // still to decide
+};
+
+// Whether q's surface continues p's across the pixel between them: the same
+// triangle, or one whose normal and plane agree with p's, so that no
+// silhouette or crease lies between them.
+bool continues(const SurfacePoint& p, const SurfacePoint& q) {
+  if (p.prim == q.prim) return true;
+  const Vec3 d = q.position - p.position;
+  const float height = p.normal.dot(d);
+  return p.normal.dot(q.normal) >= 0.9f && height * height <= 0.01f * d.squaredNorm();
 }
+
+// The four neighbours of a pixel, in the order of the bits of
+// CpuDirectLight's continuity masks.
+constexpr int kNeighbourOffsets[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+
+// What a pixel's four neighbours (the checkerboard's first half) say of it.
+struct Neighbours {
+  Visibility agreed = kOpen;  // the visibility all share, all on the pixel's surface; else kOpen
+  bool smooth = false;        // and their unshadowed light within 20 % of each other
+  Vec3 mean_light = Vec3::Zero();
+};
+
+// `continuing`: bit k set where neighbour k continues the pixel's surface.
+Neighbours neighbours_of(int width, uint8_t continuing, const std::vector<uint8_t>& visibility, const Image& light,
+                         size_t i) {
+  Neighbours n;
+  if (continuing != 0xF) return n;  // a silhouette or crease beside it, or the view's border
+  float lowest = std::numeric_limits<float>::infinity(), highest = 0.0f;
+  for (const auto& [dx, dy] : kNeighbourOffsets) {
+    const size_t j = i + ptrdiff_t(dy) * width + dx;
+    const auto v = Visibility(visibility[j]);
+    if (v == kOpen || (n.agreed != kOpen && v != n.agreed)) return {};
+    n.agreed = v;
+    const Vec3& e = light.pixels[j];
+    n.mean_light += e;
+    lowest = std::min(lowest, e.sum());
+    highest = std::max(highest, e.sum());
+  }
+  n.smooth = highest <= 1.2f * lowest;
+  n.mean_light *= 0.25f;
+  return n;
+}
+
+// The points of a light the shadow rays aim at while it moves: a fixed set
+// spread over it, one picked per pixel by a hash of the pixel's index, so
+// that a pixel costs no random numbers, trigonometry or frame of its own,
+// and the pattern of a soft shadow's noise holds still as the light moves.
+class LightTargets {
+ public:
+  static constexpr int kCount = 64;
+
+  explicit LightTargets(const LightSampler& sampler) : sampler_(sampler) {
+    const Vec3 towards_sun = -sampler.light().direction.normalized();
+    for (int k = 0; k < kCount; ++k) {
+      u_[k] = hammersley(k, kCount);
+      sun_[k] = sampler.sample(Vec3::Zero(), towards_sun, u_[k]).direction;  // the same from everywhere
+      // A point of the unit 3-sphere in 4 dimensions (the squared length of
+      // its first pair uniform, both pairs' angles uniform), its first three
+      // coordinates kept: seen along any direction, these points lie evenly
+      // over the unit disc (Archimedes' hat-box theorem one dimension up),
+      // as a sphere light's disc is sampled; so a pixel needs no frame.
+      const float a = u_[k].x(), turn = 2.0f * kPi * u_[k].y();
+      const float second_turn = 2.0f * kPi * (float(k) * 0.618034f - std::floor(float(k) * 0.618034f));
+      ball_[k] = Vec3(std::sqrt(a) * std::cos(turn), std::sqrt(a) * std::sin(turn),
+                      std::sqrt(1.0f - a) * std::cos(second_turn));
+    }
+  }
+  // Pixel i's sample of the light from p (unit normal n): for an area
+  // light, that point's irradiance; for the others, the irradiance from
+  // their centre, without noise.
+  LightSample at(size_t pixel, const Vec3& p, const Vec3& n) const {
+    const int k = int((uint32_t(pixel) * 2654435761u) >> 26);  // Knuth's multiplicative hash, 6 bits
+    const Light& light = sampler_.light();
+    if (light.type == LightType::area) return sampler_.sample(p, n, u_[k]);
+    LightSample s = sampler_.unshadowed_from_centre(p, n);
+    if (light.type == LightType::directional) {
+      s.direction = sun_[k];
+    } else {  // a point of the disc facing p
+      const Vec3& q = ball_[k];
+      const Vec3 to_light = light.position + light.radius * (q - q.dot(s.direction) * s.direction) - p;
+      const float d2 = to_light.squaredNorm(), inverse = 1.0f / std::sqrt(d2);
+      s.distance = d2 * inverse;
+      s.direction = to_light * inverse;
+    }
+    return s;
+  }
+
+ private:
+  static_assert(kCount == 64, "at() hashes a pixel to 6 bits");
+  const LightSampler& sampler_;
+  Vec2 u_[kCount];
+  Vec3 sun_[kCount], ball_[kCount];
+};
+
+// Per-thread state of one row: the packet of shadow rays being filled and
+// each ray's pixel.
+struct RowVisibility {
+  ShadowPacket packet;
+  size_t pixel[ShadowPacket::kCapacity];
+  size_t traced = 0;
+
+  // Traces the packet; a pixel whose ray is blocked gets no light.
+  void trace(const RayScene& scene, std::vector<uint8_t>& visibility, Image& light) {
+    scene.occluded(packet);
+    for (int j = 0; j < packet.size(); ++j) {
+      const bool blocked = packet.blocked(j);
+      visibility[pixel[j]] = blocked ? kBlocked : kSeen;
+      if (blocked) light.pixels[pixel[j]] = Vec3::Zero();
+    }
+    traced += size_t(packet.size());
+    packet.clear();
+  }
+};
+
+}  // namespace
+
+CpuDirectLight::CpuDirectLight(const PixelSurfaces& surfaces, const RayScene& rays)
+    : surfaces_(surfaces), rays_(rays), continuing_(surfaces.surface.size(), 0) {
+  const int width = surfaces.width, height = surfaces.height;
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y != rows.end(); ++y)
+      for (int x = 0; x < width; ++x) {
+        const size_t i = size_t(y) * width + x;
+        if (!surfaces.hit[i]) continue;
+        for (int k = 0; k < 4; ++k) {
+          const int nx = x + kNeighbourOffsets[k][0], ny = y + kNeighbourOffsets[k][1];
+          if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+          const size_t j = size_t(ny) * width + nx;
+          if (surfaces.hit[j] && continues(surfaces.surface[i], surfaces.surface[j])) continuing_[i] |= uint8_t(1 << k);
+        }
+      }
+  });
+}
+
+size_t CpuDirectLight::render_counting_rays(const Light& light, Image& out) {
+  const PixelSurfaces& surfaces = surfaces_;
+  const RayScene& rays = rays_;
+  const int width = surfaces.width, height = surfaces.height;
+  if (out.width != width || out.height != height) out = Image(width, height);
+  const LightSampler sampler(light);
+  const bool extent = sampler.needs_random(), noisy_light = light.type == LightType::area;
+  const LightTargets targets(sampler);
+  // Kept from frame to frame (no allocation per frame); named through a
+  // reference so that the pool's threads use the caller's.
+  thread_local std::vector<uint8_t> kept;
+  std::vector<uint8_t>& visibility = kept;
+  visibility.assign(surfaces.surface.size(), kUnlit);
+  std::atomic<size_t> traced{0};
+  // Pass 0: the pixels with x + y even, each its light and its ray. Pass 1:
+  // the others, settled by their neighbours (all of pass 0) where they can be.
+  for (int pass = 0; pass < 2; ++pass) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+      thread_local RowVisibility row;
+      row.traced = 0;
+      for (int y = rows.begin(); y != rows.end(); ++y) {
+        for (int x = (y + pass) % 2; x < width; x += 2) {
+          const size_t i = size_t(y) * width + x;
+          if (!surfaces.hit[i]) {
+            out.pixels[i] = Vec3::Zero();
+            continue;
+          }
+          const SurfacePoint& p = surfaces.surface[i];
+          const Neighbours around = pass == 1 ? neighbours_of(width, continuing_[i], visibility, out, i) : Neighbours{};
+          // Unlit or blocked neighbours' light is 0: the pixel's is too. An
+          // area light's light is one sample's, noisy: its mean is the better.
+          if (around.agreed != kOpen && (around.agreed != kSeen || around.smooth || noisy_light)) {
+            out.pixels[i] = around.mean_light;
+            visibility[i] = around.agreed;
+            continue;
+          }
+          const LightSample s =
+              extent ? targets.at(i, p.position, p.normal) : sampler.unshadowed_from_centre(p.position, p.normal);
+          out.pixels[i] = s.irradiance * kInvPi;
+          if (s.irradiance.isZero()) continue;  // kUnlit
+          if ((visibility[i] = around.agreed) != kOpen) continue;
+          const int slot = row.packet.add(rays.shadow_ray(p, s.direction, s.distance));
+          row.pixel[slot] = i;
+          if (row.packet.full()) row.trace(rays, visibility, out);
+        }
+      }
+      if (row.packet.size()) row.trace(rays, visibility, out);
+      traced += row.traced;
+    });
+  }
+  return traced;
+}
+
+void CpuDirectLight::render(const Light& light, Image& out) { render_counting_rays(light, out); }
 
 }  // namespace relight

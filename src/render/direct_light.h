@@ -59,19 +59,30 @@ class DirectLightBackend {
   virtual void render(const Light& light, Image& out) = 0;
 };
 
-// The CPU backend: one shadow ray per pixel (one light sample).
+// The CPU backend, for a light that moves (the interactive frame): each
+// pixel's light with nothing in the way, from the light's centre (an area
+// light's from one point of it), times whether one shadow ray towards a
+// point of the light gets through. Half the pixels, a checkerboard, work
+// theirs out; each other pixel takes the visibility its four neighbours
+// agree on, and their mean light where that agrees within 20 %, when all
+// four lie on its own surface. Where they disagree (a shadow's edge, a soft
+// shadow, a spot's rim) or a silhouette or crease lies between them, it
+// works out its own. A shadow a pixel wide is kept (its pixels' neighbours
+// along it and across it disagree); one that falls on a single pixel of the
+// second half alone is lost.
 class CpuDirectLight final : public DirectLightBackend {
  public:
   // Holds references to both.
-  CpuDirectLight(const PixelSurfaces& surfaces, const RayScene& rays, uint64_t seed = 1)
-      : surfaces_(surfaces), rays_(rays), seed_(seed) {}
+  CpuDirectLight(const PixelSurfaces& surfaces, const RayScene& rays);
   const char* name() const override { return "cpu"; }
   void render(const Light& light, Image& out) override;
+  // The same; returns the number of shadow rays traced.
+  size_t render_counting_rays(const Light& light, Image& out);
 
  private:
   const PixelSurfaces& surfaces_;
   const RayScene& rays_;
-  uint64_t seed_;
+  std::vector<uint8_t> continuing_;  // per pixel, bit k: neighbour k continues its surface (kNeighbourOffsets)
 };
 
 // The light with white colour and unit power (or irradiance): its direct

@@ -112,6 +112,7 @@ LightSampler::LightSampler(const Light& light) : light_(light), emission_(light.
       const AreaLightSides sides = area_light_sides(light);
       side_w_ = sides.w;
       side_h_ = sides.h;
+      area_intensity_ = emission_ * 0.25f;  // radiance emission / (4 w h) times the area w h
       break;
     }
     case LightType::directional:
@@ -134,17 +135,32 @@ bool LightSampler::needs_random() const {
 LightSample LightSampler::sample(const Vec3& p, const Vec3& n, const Vec2& u) const {
   switch (light_.type) {
     case LightType::point:
-    case LightType::spot: return sample_point_like(p, n, u);
+    case LightType::spot:
+      return sample_point_like(p, n, &u);
     case LightType::area: return sample_area(p, n, u);
-    case LightType::directional: return sample_directional(n, u);
+    case LightType::directional:
+      return sample_directional(n, &u);
+  }
+  return {};
+}
+
+LightSample LightSampler::unshadowed_from_centre(const Vec3& p, const Vec3& n) const {
+  switch (light_.type) {
+    case LightType::point:
+    case LightType::spot:
+      return sample_point_like(p, n, nullptr);
+    case LightType::area:
+      return sample_area(p, n, Vec2(0.5f, 0.5f));
+    case LightType::directional:
+      return sample_directional(n, nullptr);
   }
   return {};
 }
 
 // Point and spot lights: intensity I = power/(4 pi) (times the spot factor),
 // from a point or, with a radius, from a disc of radiance power/(4 pi^2 r^2)
-// facing the surface point (FORMAT.md).
-LightSample LightSampler::sample_point_like(const Vec3& p, const Vec3& n, const Vec2& u) const {
+// facing the surface point (FORMAT.md). No u: the disc's centre.
+LightSample LightSampler::sample_point_like(const Vec3& p, const Vec3& n, const Vec2* u) const {
   const Light& light = light_;
   LightSample s{};
   const Vec3 to_light_center = light.position - p;
@@ -155,19 +171,25 @@ LightSample LightSampler::sample_point_like(const Vec3& p, const Vec3& n, const 
     s.irradiance = Vec3::Zero();
     return s;
   }
-  const float distance_center = std::sqrt(d2_center);
-  const Vec3 axis = to_light_center * (1.0f / distance_center);  // disc normal faces p
+  // One square root and one division for the centre (two with a disc):
+  // they were most of the interactive engine's time per pixel.
+  const float inverse_center = 1.0f / std::sqrt(d2_center);
+  const Vec3 axis = to_light_center * inverse_center;  // disc normal faces p
   float cone = 1.0f;
   if (light.type == LightType::spot) cone = spot_cone(cos_outer_, light.blend, (-axis).dot(axis_));
-  if (light.radius > 0.0f) {
-    const Vec2 d = sample_concentric_disc(u) * light.radius;
+  float inverse_distance = inverse_center;
+  const bool on_disc = u && light.radius > 0.0f;
+  if (on_disc) {
+    const Vec2 d = sample_concentric_disc(*u) * light.radius;
     Vec3 t, b;
     orthonormal_basis(axis, t, b);
     const Vec3 to_light = light.position + d.x() * t + d.y() * b - p;
-    s.distance = to_light.norm();
-    s.direction = to_light / s.distance;
+    const float d2 = to_light.squaredNorm();
+    inverse_distance = 1.0f / std::sqrt(d2);
+    s.distance = d2 * inverse_distance;
+    s.direction = to_light * inverse_distance;
   } else {  // the centre: its direction and distance are known (the interactive engine's hot path)
-    s.distance = distance_center;
+    s.distance = d2_center * inverse_center;
     s.direction = axis;
   }
   const float cos_surface = n.dot(s.direction);
@@ -175,13 +197,10 @@ LightSample LightSampler::sample_point_like(const Vec3& p, const Vec3& n, const 
     s.irradiance = Vec3::Zero();
     return s;
   }
-  if (light.radius <= 0.0f) {
-    s.irradiance = emission_ * (cone * cos_surface / (4.0f * kPi * s.distance * s.distance));
-  } else {
-    // L_e cos_s cos_l A / dist^2 with L_e = P/(4 pi^2 r^2), A = pi r^2.
-    const float cos_light = std::max(0.0f, axis.dot(s.direction));
-    s.irradiance = emission_ * (cone * cos_surface * cos_light / (4.0f * kPi * s.distance * s.distance));
-  }
+  // With a radius: L_e cos_s cos_l A / dist^2 with L_e = P/(4 pi^2 r^2), A = pi r^2.
+  constexpr float kInverse4Pi = 1.0f / (4.0f * kPi);
+  const float cos_light = on_disc ? std::max(0.0f, axis.dot(s.direction)) : 1.0f;
+  s.irradiance = emission_ * (cone * cos_surface * cos_light * inverse_distance * inverse_distance * kInverse4Pi);
   return s;
 }
 
@@ -201,25 +220,24 @@ LightSample LightSampler::sample_area(const Vec3& p, const Vec3& n, const Vec2& 
   const Vec3 q = light.position + (u.x() - 0.5f) * light.size.x() * side_w_ + (u.y() - 0.5f) * light.size.y() * side_h_;
   const Vec3 to_light = q - p;
   s.distance = to_light.norm();
-  s.direction = to_light / s.distance;
+  const float inverse_distance = 1.0f / s.distance;
+  s.direction = to_light * inverse_distance;
   const float cos_surface = n.dot(s.direction);
   const float cos_light = -axis_.dot(s.direction);
   if (cos_surface <= 0.0f || cos_light <= 0.0f) {
     s.irradiance = Vec3::Zero();
     return s;
   }
-  const float area = light.size.x() * light.size.y();
-  const Vec3 radiance = emission_ / (4.0f * area);
-  s.irradiance = radiance * (cos_surface * cos_light * area / (s.distance * s.distance));
+  s.irradiance = area_intensity_ * (cos_surface * cos_light * inverse_distance * inverse_distance);
   return s;
 }
 
 // Sun: irradiance on a facing surface; a disc of angular diameter angle_deg
-// sampled uniformly in its cone.
-LightSample LightSampler::sample_directional(const Vec3& n, const Vec2& u) const {
+// sampled uniformly in its cone (no u: its centre).
+LightSample LightSampler::sample_directional(const Vec3& n, const Vec2* u) const {
   LightSample s{};
   s.direction = axis_;
-  if (light_.angle_deg > 0.0f) s.direction = to_world(sample_uniform_cone(u, cos_outer_), axis_);
+  if (u && light_.angle_deg > 0.0f) s.direction = to_world(sample_uniform_cone(*u, cos_outer_), axis_);
   s.distance = std::numeric_limits<float>::infinity();
   s.irradiance = emission_ * std::max(0.0f, n.dot(s.direction));
   return s;

@@ -66,18 +66,24 @@ class LightSampler {
   // with nothing in the way, exactly (Lambert's formula for a polygon, over
   // the part above p's horizon): what sample() estimates, without its noise.
   Vec3 unshadowed_irradiance(const Vec3& p, const Vec3& n) const;
+  // The light's irradiance at p with nothing in the way, as its centre
+  // sends it, and the direction and distance to that centre: for a point,
+  // spot or sun of any size, its irradiance without noise; for an area
+  // light, one sample's (unshadowed_irradiance is its exact irradiance).
+  LightSample unshadowed_from_centre(const Vec3& p, const Vec3& n) const;
   const Light& light() const { return light_; }
 
  private:
-  LightSample sample_point_like(const Vec3& p, const Vec3& n, const Vec2& u) const;
+  LightSample sample_point_like(const Vec3& p, const Vec3& n, const Vec2* u) const;
   LightSample sample_area(const Vec3& p, const Vec3& n, const Vec2& u) const;
-  LightSample sample_directional(const Vec3& n, const Vec2& u) const;
+  LightSample sample_directional(const Vec3& n, const Vec2* u) const;
 
   Light light_;
   Vec3 emission_;
   Vec3 axis_;               // spot/area: unit direction; sun: unit direction towards it
   float cos_outer_ = -1.0f; // spot: cos(spot_angle/2); sun: cos(angle/2)
   Vec3 side_w_, side_h_;    // area: the w and h sides, unit
+  Vec3 area_intensity_;     // area: its radiance times its area
 };
 
 // Samples the light from point p with unit normal n; u in [0,1)^2 (one
