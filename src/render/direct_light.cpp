@@ -227,24 +227,22 @@ class LightTargets {
                       std::sqrt(1.0f - a) * std::cos(second_turn));
     }
   }
-  // Pixel i's sample of the light from p (unit normal n): for an area
-  // light, that point's irradiance; for the others, the irradiance from
-  // their centre, without noise.
-  LightSample at(size_t pixel, const Vec3& p, const Vec3& n) const {
+  // Pixel i's light at p with nothing in the way (for an area light, that of
+  // its point's; for the others, from their centre, without noise) and its
+  // shadow ray.
+  std::pair<Vec3, ShadowRay> aim(size_t pixel, const SurfacePoint& p, const RayScene& rays) const {
     const int k = int((uint32_t(pixel) * 2654435761u) >> 26);  // Knuth's multiplicative hash, 6 bits
     const Light& light = sampler_.light();
-    if (light.type == LightType::area) return sampler_.sample(p, n, u_[k]);
-    LightSample s = sampler_.unshadowed_from_centre(p, n);
-    if (light.type == LightType::directional) {
-      s.direction = sun_[k];
-    } else {  // a point of the disc facing p
-      const Vec3& q = ball_[k];
-      const Vec3 to_light = light.position + light.radius * (q - q.dot(s.direction) * s.direction) - p;
-      const float d2 = to_light.squaredNorm(), inverse = 1.0f / std::sqrt(d2);
-      s.distance = d2 * inverse;
-      s.direction = to_light * inverse;
+    if (light.type == LightType::area) {
+      const LightSample s = sampler_.sample(p.position, p.normal, u_[k]);
+      return {s.irradiance, rays.shadow_ray(p, s.direction, s.distance)};
     }
-    return s;
+    const LightSample s = sampler_.unshadowed_from_centre(p.position, p.normal);
+    if (light.type == LightType::directional) return {s.irradiance, rays.shadow_ray(p, sun_[k], s.distance)};
+    // A point of the disc facing p.
+    const Vec3& q = ball_[k];
+    return {s.irradiance,
+            rays.shadow_ray_to(p, light.position + light.radius * (q - q.dot(s.direction) * s.direction))};
   }
 
  private:
@@ -330,12 +328,18 @@ size_t CpuDirectLight::render_counting_rays(const Light& light, Image& out) {
             visibility[i] = around.agreed;
             continue;
           }
-          const LightSample s =
-              extent ? targets.at(i, p.position, p.normal) : sampler.unshadowed_from_centre(p.position, p.normal);
-          out.pixels[i] = s.irradiance * kInvPi;
-          if (s.irradiance.isZero()) continue;  // kUnlit
+          std::pair<Vec3, ShadowRay> aimed;
+          if (extent) {
+            aimed = targets.aim(i, p, rays);
+          } else {
+            const LightSample s = sampler.unshadowed_from_centre(p.position, p.normal);
+            aimed = {s.irradiance, rays.shadow_ray(p, s.direction, s.distance)};
+          }
+          const auto& [irradiance, ray] = aimed;
+          out.pixels[i] = irradiance * kInvPi;
+          if (irradiance.isZero()) continue;  // kUnlit
           if ((visibility[i] = around.agreed) != kOpen) continue;
-          const int slot = row.packet.add(rays.shadow_ray(p, s.direction, s.distance));
+          const int slot = row.packet.add(ray);
           row.pixel[slot] = i;
           if (row.packet.full()) row.trace(rays, visibility, out);
         }

@@ -90,7 +90,8 @@ class RayScene {
     return p.position + (ng.dot(towards) >= 0.0f ? scale : -scale) * ng;
   }
   // The shadow ray from p towards a point `distance` away along the unit
-  // `dir` (infinite distance: a direction), starting just off the surface and
+  // `dir` (infinite distance: a direction; or `distance` 1 along a `dir` of
+  // any length, as shadow_ray_to), starting just off the surface and
   // stopping just short of the point. Towards the side the shading normal
   // faces it starts on the smooth surface the vertices' normals describe
   // (`lift` above the facet; Hanika, "Hacking the shadow terminator", 2021):
@@ -102,6 +103,11 @@ class RayScene {
     const Vec3 origin = dir.dot(p.normal) > 0.0f ? Vec3(p.position + (offset_scale(p) + p.lift) * p.geometric_normal)
                                                  : offset_origin(p, dir);
     return {origin, dir, std::isfinite(distance) ? distance * (1.0f - 1e-4f) : distance};
+  }
+  // The shadow ray from p to the point `target`, its direction not made
+  // unit (the target is at t = 1): a square root and a division the less.
+  ShadowRay shadow_ray_to(const SurfacePoint& p, const Vec3& target) const {
+    return shadow_ray(p, target - p.position, 1.0f);
   }
   // Offset distance used for origins and shadow-ray ends (scales with the scene).
   float epsilon() const { return epsilon_; }
