@@ -860,5 +860,28 @@ TEST_F(CheckerboardView, GivesASoftLightsMeanLight) {
   }
 }
 
+// A sphere light's penumbra across the square's shadow edge, row by row
+// (averaged over 14 rows), has the width and profile of the light of 256
+// samples a pixel: each pixel's one shadow ray aims at a point of the disc
+// that faces it (3-sphere points, docs/algorithms.md section 8).
+TEST_F(CheckerboardView, KeepsASphereLightsPenumbra) {
+  Light soft = point_light(Vec3(0.2f, 0.1f, 2.0f), 100.0f);
+  soft.radius = 0.15f;
+  Image checkerboard, many;
+  CpuDirectLight(surfaces_, rays_).render(soft, checkerboard);
+  DirectLightSettings dense;
+  dense.light_samples = 256;
+  render_direct_light(surfaces_, rays_, soft, dense, many);
+  double largest = 0.0, penumbra = 0.0;
+  for (int x = 30; x < 45; ++x) {
+    double a = 0.0, b = 0.0;
+    for (int y = 68; y < 82; ++y) a += checkerboard.at(x, y).x() / 14.0, b += many.at(x, y).x() / 14.0;
+    largest = std::max(largest, std::abs(a - b));
+    if (b > 0.05 && b < 0.25) ++penumbra;  // neither lit (0.3) nor dark
+  }
+  ASSERT_GE(penumbra, 2);  // the penumbra is a few pixels wide
+  EXPECT_LT(largest, 0.05);
+}
+
 }  // namespace
 }  // namespace relight
