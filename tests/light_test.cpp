@@ -794,6 +794,22 @@ class CheckerboardView : public testing::Test {
     add_rectangle(mesh, Vec3(0.7f, 0.0f, 0.6f), 0.005f, 0.8f);
     return mesh;
   }
+  // A sphere light over the floor, off the view's middle.
+  static Light sphere_light() {
+    Light soft = point_light(Vec3(0.2f, 0.1f, 2.0f), 100.0f);
+    soft.radius = 0.15f;
+    return soft;
+  }
+  // The light's direct light in the view by the checkerboard, and by 256
+  // light samples a pixel, every pixel its own rays.
+  std::pair<Image, Image> checkerboard_and_dense(const Light& light) const {
+    Image checkerboard, dense;
+    CpuDirectLight(surfaces_, rays_).render(light, checkerboard);
+    DirectLightSettings settings;
+    settings.light_samples = 256;
+    render_direct_light(surfaces_, rays_, light, settings, dense);
+    return {std::move(checkerboard), std::move(dense)};
+  }
   // The share of the pixels the two images light differently, and the
   // largest relative difference where both light a pixel.
   static std::pair<double, double> differences(const Image& a, const Image& b) {
@@ -840,15 +856,9 @@ TEST_F(CheckerboardView, GivesWhatEveryPixelsOwnRayGivesWithHalfTheRays) {
 // light are sampled once a pixel; over the view they give the light of
 // many samples a pixel.
 TEST_F(CheckerboardView, GivesASoftLightsMeanLight) {
-  Light soft = point_light(Vec3(0.2f, 0.1f, 2.0f), 100.0f);
-  soft.radius = 0.15f;
-  Light area = downward_area_light(0.4f, 0.3f, 2.0f, 100.0f);
-  for (const Light& light : {soft, area, sun(Vec3(0.3f, 0.2f, -1.0f), 5.0f, 3.0f)}) {
-    Image checkerboard, many;
-    CpuDirectLight(surfaces_, rays_).render(light, checkerboard);
-    DirectLightSettings dense;
-    dense.light_samples = 256;
-    render_direct_light(surfaces_, rays_, light, dense, many);
+  const Light area = downward_area_light(0.4f, 0.3f, 2.0f, 100.0f);
+  for (const Light& light : {sphere_light(), area, sun(Vec3(0.3f, 0.2f, -1.0f), 5.0f, 3.0f)}) {
+    const auto [checkerboard, many] = checkerboard_and_dense(light);
     double sum = 0.0, reference = 0.0;
     for (size_t i = 0; i < many.size(); ++i) {
       sum += checkerboard.pixels[i].x();
@@ -865,13 +875,7 @@ TEST_F(CheckerboardView, GivesASoftLightsMeanLight) {
 // samples a pixel: each pixel's one shadow ray aims at a point of the disc
 // that faces it (3-sphere points, docs/algorithms.md section 8).
 TEST_F(CheckerboardView, KeepsASphereLightsPenumbra) {
-  Light soft = point_light(Vec3(0.2f, 0.1f, 2.0f), 100.0f);
-  soft.radius = 0.15f;
-  Image checkerboard, many;
-  CpuDirectLight(surfaces_, rays_).render(soft, checkerboard);
-  DirectLightSettings dense;
-  dense.light_samples = 256;
-  render_direct_light(surfaces_, rays_, soft, dense, many);
+  const auto [checkerboard, many] = checkerboard_and_dense(sphere_light());
   double largest = 0.0, penumbra = 0.0;
   for (int x = 30; x < 45; ++x) {
     double a = 0.0, b = 0.0;

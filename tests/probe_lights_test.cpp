@@ -91,14 +91,20 @@ Probe probe_with_panel(const Light& panel, const Vec3& environment) {
   return p;
 }
 
-TEST(ProbeLights, MeasuresAnEvenlyBrightPanelWhole) {
+// A 1 x 0.6 m panel of 300 W at `position`, facing down, as a ceiling panel.
+Light ceiling_panel(const Vec3& position) {
   Light panel;
   panel.type = LightType::area;
-  panel.position = Vec3(0.2f, 0.3f, 1.1f);  // overhead, facing down, as a ceiling panel
+  panel.position = position;
   panel.direction = Vec3(0, 0, -1);
   panel.up = Vec3(0, 1, 0);
   panel.size = Vec2(1.0f, 0.6f);
   panel.power = 300.0f;
+  return panel;
+}
+
+TEST(ProbeLights, MeasuresAnEvenlyBrightPanelWhole) {
+  const Light panel = ceiling_panel(Vec3(0.2f, 0.3f, 1.1f));  // overhead
   const Probe probe = probe_with_panel(panel, Vec3::Constant(0.3f));
   Light guess = panel;
   guess.position += Vec3(0.1f, 0.05f, 0.0f);  // the user's estimate is a little off
@@ -113,13 +119,7 @@ TEST(ProbeLights, MeasuresAnEvenlyBrightPanelWhole) {
 // probe measures the middle of what it fills (seen_middle), which `relight
 // fit` turns back into a line through its centre.
 TEST(ProbeLights, SeesASlantedPanelsMiddleNotItsCentre) {
-  Light panel;
-  panel.type = LightType::area;
-  panel.position = Vec3(0.9f, 0.3f, 0.8f);
-  panel.direction = Vec3(0, 0, -1);
-  panel.up = Vec3(0, 1, 0);
-  panel.size = Vec2(1.0f, 0.6f);
-  panel.power = 300.0f;
+  const Light panel = ceiling_panel(Vec3(0.9f, 0.3f, 0.8f));
   const Probe probe = probe_with_panel(panel, Vec3::Constant(0.3f));
   const auto seen = locate_light_in_probe(probe, panel);
   ASSERT_TRUE(seen);

@@ -203,19 +203,21 @@ Neighbours neighbours_of(int width, uint8_t continuing, const std::vector<uint8_
   return n;
 }
 
-// The points of a light the shadow rays aim at while it moves: a fixed set
-// spread over it, one picked per pixel by a hash of the pixel's index, so
-// that a pixel costs no random numbers, trigonometry or frame of its own,
-// and the pattern of a soft shadow's noise holds still as the light moves.
+// Where a pixel's shadow ray goes while the light moves. A light with an
+// extent is aimed at one of a fixed set of points spread over it, picked by
+// a hash of the pixel's index, so that a pixel costs no random numbers,
+// trigonometry or frame of its own, and the pattern of a soft shadow's
+// noise holds still as the light moves; one without, at its centre.
 class LightTargets {
  public:
   static constexpr int kCount = 64;
 
   explicit LightTargets(const LightSampler& sampler) : sampler_(sampler) {
-    const Vec3 towards_sun = -sampler.light().direction.normalized();
+    const Light& light = sampler.light();
     for (int k = 0; k < kCount; ++k) {
       u_[k] = hammersley(k, kCount);
-      sun_[k] = sampler.sample(Vec3::Zero(), towards_sun, u_[k]).direction;  // the same from everywhere
+      if (light.type == LightType::directional)  // the same from everywhere
+        sun_[k] = sampler.sample(Vec3::Zero(), -light.direction.normalized(), u_[k]).direction;
       // A point of the unit 3-sphere in 4 dimensions (the squared length of
       // its first pair uniform, both pairs' angles uniform), its first three
       // coordinates kept: seen along any direction, these points lie evenly
@@ -239,6 +241,7 @@ class LightTargets {
     }
     const LightSample s = sampler_.unshadowed_from_centre(p.position, p.normal);
     if (light.type == LightType::directional) return {s.irradiance, rays.shadow_ray(p, sun_[k], s.distance)};
+    if (light.radius <= 0.0f) return {s.irradiance, rays.shadow_ray(p, s.direction, s.distance)};
     // A point of the disc facing p.
     const Vec3& q = ball_[k];
     return {s.irradiance,
@@ -246,7 +249,7 @@ class LightTargets {
   }
 
  private:
-  static_assert(kCount == 64, "at() hashes a pixel to 6 bits");
+  static_assert(kCount == 64, "aim() hashes a pixel to 6 bits");
   const LightSampler& sampler_;
   Vec2 u_[kCount];
   Vec3 sun_[kCount], ball_[kCount];
@@ -298,7 +301,7 @@ size_t CpuDirectLight::render_counting_rays(const Light& light, Image& out) {
   const int width = surfaces.width, height = surfaces.height;
   if (out.width != width || out.height != height) out = Image(width, height);
   const LightSampler sampler(light);
-  const bool extent = sampler.needs_random(), noisy_light = light.type == LightType::area;
+  const bool noisy_light = light.type == LightType::area;  // its light is one sample's
   const LightTargets targets(sampler);
   // Kept from frame to frame (no allocation per frame); named through a
   // reference so that the pool's threads use the caller's.
@@ -328,14 +331,7 @@ size_t CpuDirectLight::render_counting_rays(const Light& light, Image& out) {
             visibility[i] = around.agreed;
             continue;
           }
-          std::pair<Vec3, ShadowRay> aimed;
-          if (extent) {
-            aimed = targets.aim(i, p, rays);
-          } else {
-            const LightSample s = sampler.unshadowed_from_centre(p.position, p.normal);
-            aimed = {s.irradiance, rays.shadow_ray(p, s.direction, s.distance)};
-          }
-          const auto& [irradiance, ray] = aimed;
+          const auto [irradiance, ray] = targets.aim(i, p, rays);
           out.pixels[i] = irradiance * kInvPi;
           if (irradiance.isZero()) continue;  // kUnlit
           if ((visibility[i] = around.agreed) != kOpen) continue;
