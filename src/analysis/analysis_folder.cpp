@@ -60,6 +60,7 @@ void write_options(nlohmann::json& j, const AnalysisOptions& o) {
   j["interreflection"] = o.interreflection;
   j["bounce_source"] = to_string(o.bounce_source);
   j["denoise"] = o.denoise;
+  j["indirect_stride"] = o.indirect_stride;
   if (o.align_edges) j["align_edges"] = true;
   if (o.keep_camera) j["keep_camera"] = true;
   if (o.method == AnalysisMethod::radiosity) {
@@ -92,6 +93,9 @@ AnalysisOptions read_options(const JsonReader& r, const nlohmann::json& j) {
   o.interreflection = r.boolean(r.required(j, "", "interreflection"), "/interreflection");
   o.bounce_source = named("bounce_source", "albedo", parse_bounce_source);
   o.denoise = r.boolean(r.required(j, "", "denoise"), "/denoise");
+  // Before the key existed, every pixel was traced.
+  o.indirect_stride = r.optional(j, "indirect_stride") ? count("indirect_stride") : 1;
+  if (o.indirect_stride < 1) r.fail("/indirect_stride", "must be at least 1");
   if (const nlohmann::json* v = r.optional(j, "align_edges")) o.align_edges = r.boolean(*v, "/align_edges");
   if (const nlohmann::json* v = r.optional(j, "keep_camera")) o.keep_camera = r.boolean(*v, "/keep_camera");
   if (o.method == AnalysisMethod::radiosity) {
@@ -126,6 +130,7 @@ std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& optio
   if (options.bounce_source == BounceSource::photo) hash.add_text(" bounce-source photo");
   if (options.align_edges) hash.add_text(" align-edges");  // likewise
   if (options.keep_camera) hash.add_text(" keep-camera");  // likewise
+  if (options.indirect_stride != 1) hash.add_text(fmt::format(" indirect-stride {}", options.indirect_stride));
   // Added only for radiosity, so that path analyses made before the method
   // existed stay valid.
   if (options.method == AnalysisMethod::radiosity)

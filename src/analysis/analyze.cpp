@@ -54,6 +54,7 @@ IlluminationOptions illumination_options(const AnalysisOptions& options) {
   o.paths_per_pixel = options.paths_per_pixel;
   o.seed = options.seed;
   o.denoise = options.denoise;
+  o.indirect_stride = options.indirect_stride;
   return o;
 }
 
@@ -172,9 +173,11 @@ std::optional<Vec3> photo_exposure_against_the_probes(const Scene& scene, const 
 
 }  // namespace
 
-Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& options,
+Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& requested,
                  Progress& progress, const AlbedoObserver& on_albedo) {
-  check_strategy(scene, options.strategy);
+  check_strategy(scene, requested.strategy);
+  AnalysisOptions options = requested;
+  if (options.indirect_stride <= 0) options.indirect_stride = sparse_indirect_stride(gbuffer.width(), gbuffer.height());
   Analysis result;
   result.options = options;
   // The photo's radiance serves the interreflection.
@@ -206,11 +209,16 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   }
   // The illumination with `albedo` on the surfaces light bounces off (and
   // with the photo's radiance where `known` gives it).
+  // The lights' direct light does not depend on that albedo: it is rendered
+  // once, with the closing pass's paths (the render that re-lights renders
+  // the same).
+  std::optional<Image> direct;
   const auto render_with = [&](const SurfaceAlbedo& albedo, const KnownRadiance* known,
                                const IlluminationOptions& pixel_options, const std::string& label) {
     if (radiosity) return radiosity->render(albedo, known);
     const Integrator integrator(rays, lighting, &albedo, integrator_options, known);
-    return render_illumination(gbuffer, scene.camera, integrator, pixel_options, progress, label);
+    if (!direct) direct = render_direct_part(gbuffer, integrator, illumination_options(options), progress);
+    return render_illumination(gbuffer, scene.camera, integrator, pixel_options, progress, label, &*direct);
   };
   // With the photo's radiance, the renders before the closing pass only
   // give the albedo the closing pass's paths bounce off, and they average

@@ -46,6 +46,10 @@ struct AnalysisOptions {
   bool interreflection = true;
   BounceSource bounce_source = BounceSource::photo;  // with interreflection on, --method path
   bool denoise = true;                                // filter the environment + interreflection part of each render
+  // The environment and interreflection traced at every this-many-th pixel
+  // each way (render_illumination.h); 0: sparse_indirect_stride of the
+  // photo, which analyze() puts in its result's options.
+  int indirect_stride = 0;
   int max_iterations = 4;                             // interreflection re-renders at most (bounce source albedo)
   float tolerance = 0.005f;                           // stop when the mean albedo change is below this
   // Divide by the illumination with its edges moved onto the photo's
@@ -102,7 +106,7 @@ GBuffer scene_gbuffer(const Scene& scene, const RayScene& rays, const AnalysisOp
 // then one per interreflection pass), to follow the iteration.
 using AlbedoObserver = std::function<void(int render, const AlbedoImages& albedo)>;
 
-Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& options,
+Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& requested,
                  Progress& progress, const AlbedoObserver& on_albedo = {});
 
 }  // namespace relight

@@ -67,7 +67,7 @@ RadiosityIllumination::RadiosityIllumination(const Scene& scene, const RayScene&
     IntegratorOptions no_bounce;
     no_bounce.max_bounces = 0;
     const Integrator integrator(rays, lights_only, nullptr, no_bounce);
-    direct_ = render_illumination(gbuffer, scene.camera, integrator, pixel_options, progress, "direct light").surface;
+    direct_ = render_direct_part(gbuffer, integrator, pixel_options, progress, "direct light");
     view_lighting.lights.clear();  // traced per pixel instead
   }
   view_gather_ = std::make_unique<RadiosityGather>(*view_, *scene_, *scene_rays_, rays, view_lighting, options,

@@ -105,6 +105,12 @@ void add_analyze_command(CLI::App& app, Action& action) {
                 "analyse through the scene's camera as given; by default a camera whose view of the geometry is "
                 "visibly off the photo's edges (by over 1.5 px) is registered to them first, as `relight register` does, "
                 "and analysis.json keeps it for every render");
+  cmd->add_option("--indirect-stride", args->options.indirect_stride,
+                  "the environment and bounce light (smooth) traced at every N-th pixel each way and interpolated "
+                  "along the surfaces between; the lights' direct light is traced at every pixel. 1: every pixel; "
+                  "0: about 524 000 pixels traced (1 at 640x480, 2 at 1280x960, 7 at 24 Mpixel)")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
   cmd->add_flag("--save-renders", args->save_renders,
                 "also write the albedo each render recovered, albedo_render1.exr (white surfaces), "
                 "albedo_render2.exr, ... (to follow the interreflection iteration)");

@@ -5,17 +5,13 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "render/direct_light.h"
 
 namespace relight {
 
-Image denoise_illumination(const Image& noisy, std::vector<float> variance, const GBuffer& g,
+Image denoise_illumination(const Image& noisy, std::vector<float> variance, const PixelSurfaces& centre,
                            const DenoiseOptions& options) {
   const int w = noisy.width, h = noisy.height;
   static constexpr float kKernel[3] = {3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f};  // B3 spline, |offset| 0, 1, 2
-  // Each pixel's central sample side by side: in the G-buffer they are a
-  // pixel's sub-samples apart, a cache line each for the 25 taps.
-  const PixelSurfaces centre = PixelSurfaces::central_samples(g);
   Image current = noisy, next(w, h);
   std::vector<float> next_variance(variance.size());
 

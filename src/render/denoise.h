@@ -23,7 +23,13 @@ struct DenoiseOptions {
 };
 
 // variance: per pixel, the variance of the pixel's mean luminance.
-Image denoise_illumination(const Image& noisy, std::vector<float> variance, const GBuffer& gbuffer,
-                          const DenoiseOptions& options = {});
+// surfaces: what each pixel of `noisy` sees (a G-buffer's centre samples, or
+// the pixels a sparse render traced).
+Image denoise_illumination(const Image& noisy, std::vector<float> variance, const PixelSurfaces& surfaces,
+                           const DenoiseOptions& options = {});
+inline Image denoise_illumination(const Image& noisy, std::vector<float> variance, const GBuffer& gbuffer,
+                                  const DenoiseOptions& options = {}) {
+  return denoise_illumination(noisy, std::move(variance), PixelSurfaces::central_samples(gbuffer), options);
+}
 
 }  // namespace relight

@@ -13,16 +13,6 @@
 
 namespace relight {
 
-// The surface each pixel sees through its central G-buffer sample, packed
-// row by row (the interactive view's one-sample-per-pixel G-buffer).
-struct PixelSurfaces {
-  int width = 0, height = 0;
-  std::vector<SurfacePoint> surface;  // valid where hit
-  std::vector<uint8_t> hit;
-
-  static PixelSurfaces central_samples(const GBuffer& gbuffer);
-};
-
 struct DirectLightSettings {
   int light_samples = 1;  // per surface sample
   // Area lights: the exact unshadowed irradiance (LightSampler::unshadowed_irradiance)

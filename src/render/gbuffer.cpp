@@ -85,4 +85,20 @@ Vec2 GBuffer::sample_position(int x, int y, int k) const {
   return {x + (gx + j.x()) / grid_, y + (gy + j.y()) / grid_};
 }
 
+PixelSurfaces PixelSurfaces::central_samples(const GBuffer& gbuffer) {
+  PixelSurfaces s;
+  s.width = gbuffer.width();
+  s.height = gbuffer.height();
+  s.surface.resize(size_t(s.width) * s.height);
+  s.hit.resize(s.surface.size());
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const GBufferSample& g = gbuffer.central(x, y);
+      const size_t i = size_t(y) * s.width + x;
+      s.surface[i] = g.surface;
+      s.hit[i] = g.hit;
+    }
+  return s;
+}
+
 }  // namespace relight

@@ -72,4 +72,15 @@ class GBuffer {
   std::vector<CentralDepth> central_depth_;
 };
 
+// The surface each pixel sees through its central G-buffer sample, packed
+// row by row (the interactive view's one-sample-per-pixel G-buffer; the
+// pixels a sparse render traces, render_illumination.h).
+struct PixelSurfaces {
+  int width = 0, height = 0;
+  std::vector<SurfacePoint> surface;  // valid where hit
+  std::vector<uint8_t> hit;
+
+  static PixelSurfaces central_samples(const GBuffer& gbuffer);
+};
+
 }  // namespace relight

@@ -94,12 +94,13 @@ Vec3 Integrator::from_environment(const SurfacePoint& p, const ProbeEnvironment*
   return sum;
 }
 
-void Integrator::illumination(const SurfacePoint& start, Rng& rng, Vec3& direct, Vec3& indirect,
-                              const Vec2* first_bounce) const {
+Vec3 Integrator::direct_light(const SurfacePoint& p, Rng& rng) const {
+  return options_.first_surface_lights ? from_lights(p, rng) : Vec3::Zero();
+}
+
+Vec3 Integrator::indirect_light(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce) const {
   const Environment& env = lighting_.environment;
-  direct = options_.first_surface_lights ? from_lights(start, rng) : Vec3::Zero();
-  Vec3& result = indirect;
-  result = Vec3::Zero();
+  Vec3 result = Vec3::Zero();
   Vec3 throughput = Vec3::Ones();
   SurfacePoint p = start;
   for (int bounce = 0;; ++bounce) {
@@ -137,6 +138,7 @@ void Integrator::illumination(const SurfacePoint& start, Rng& rng, Vec3& direct,
     }
     p = next;
   }
+  return result;
 }
 
 }  // namespace relight

@@ -91,7 +91,14 @@ class Integrator {
   // direction (a pixel's paths stratify it: less noise than independent
   // ones where the light arriving varies a lot across the hemisphere).
   void illumination(const SurfacePoint& p, Rng& rng, Vec3& direct, Vec3& indirect,
-                    const Vec2* first_bounce = nullptr) const;
+                    const Vec2* first_bounce = nullptr) const {
+    direct = direct_light(p, rng);
+    indirect = indirect_light(p, rng, first_bounce);
+  }
+  // The two parts apart (rendered at different densities:
+  // render_illumination.h). direct_light is 0 without first_surface_lights.
+  Vec3 direct_light(const SurfacePoint& p, Rng& rng) const;
+  Vec3 indirect_light(const SurfacePoint& p, Rng& rng, const Vec2* first_bounce = nullptr) const;
   Vec3 illumination(const SurfacePoint& p, Rng& rng) const {
     Vec3 d, i;
     illumination(p, rng, d, i);

@@ -2,71 +2,60 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cmath>
+
 namespace relight {
 
 namespace {
 
-struct PixelSums {
-  Image direct, indirect;
-  std::vector<float> direct_variance, indirect_variance;  // of the pixel's mean luminance
+// Each part draws its own random numbers at a pixel, so that the noise of
+// one does not depend on how many the other drew.
+constexpr uint64_t kPhotoStream = 0, kDirectStream = 1, kIndirectStream = 2;
+
+struct PixelEstimate {
+  Vec3 mean = Vec3::Zero();
+  float variance = 0.0f;  // of the mean's luminance
 };
 
-// Traces paths_per_pixel paths per pixel. With seen_albedo, every camera
-// sample is weighted by the albedo of the surface it sees (a photo).
-PixelSums trace_pixels(const GBuffer& gbuffer, const Integrator& integrator, const SurfaceAlbedo* seen_albedo,
-                       int paths_per_pixel, uint64_t seed, Progress& progress, const std::string& label) {
-  const int w = gbuffer.width(), h = gbuffer.height(), spp = gbuffer.samples_per_pixel();
+// The mean of max(paths_per_pixel, sub-samples) estimates spread evenly over
+// the pixel's sub-samples, over those that see geometry:
+// estimate(surface, path, paths, rng) gives one.
+template <class Estimate>
+PixelEstimate estimate_pixel(const GBuffer& g, int x, int y, int paths_per_pixel, Rng& rng, const Estimate& estimate) {
+  const int spp = g.samples_per_pixel();
   const int paths = std::max(paths_per_pixel, spp);
-  PixelSums r{Image(w, h), Image(w, h), std::vector<float>(size_t(w) * h, 0.0f),
-              std::vector<float>(size_t(w) * h, 0.0f)};
-  progress.begin(label, h);
-  tbb::parallel_for(0, h, [&](int y) {
-    for (int x = 0; x < w; ++x) {
-      Rng rng(seed, size_t(y) * w + x);
-      Vec3 direct_sum = Vec3::Zero(), indirect_sum = Vec3::Zero();
-      double lum_sum = 0.0, lum_sq_sum = 0.0, direct_lum_sum = 0.0, direct_lum_sq_sum = 0.0;
-      int surface_n = 0;
-      // The first bounces of the pixel's paths: a randomly shifted
-      // Hammersley set, spread over the hemisphere evenly.
-      const Vec2 shift = rng.uniform2();
-      for (int i = 0; i < paths; ++i) {
-        const int k = i % spp;
-        const GBufferSample& s = gbuffer.sample(x, y, k);
-        if (s.hit) {
-          Vec3 d, ind;
-          const Vec2 first_bounce = shifted(hammersley(i, paths), shift);
-          integrator.illumination(s.surface, rng, d, ind, &first_bounce);
-          if (seen_albedo) {
-            const Vec3 a = seen_albedo->at(s.surface);
-            d = d.cwiseProduct(a);
-            ind = ind.cwiseProduct(a);
-          }
-          direct_sum += d;
-          indirect_sum += ind;
-          const double l = luminance(ind), ld = luminance(d);
-          lum_sum += l;
-          lum_sq_sum += l * l;
-          direct_lum_sum += ld;
-          direct_lum_sq_sum += ld * ld;
-          ++surface_n;
-        }
-      }
-      const size_t idx = size_t(y) * w + x;
-      if (surface_n) {
-        r.direct.pixels[idx] = direct_sum / float(surface_n);
-        r.indirect.pixels[idx] = indirect_sum / float(surface_n);
-        const auto variance_of_mean = [&](double sum, double sq_sum) {
-          const double mean = sum / surface_n;
-          return float(std::max(0.0, sq_sum / surface_n - mean * mean) / surface_n);
-        };
-        r.indirect_variance[idx] = variance_of_mean(lum_sum, lum_sq_sum);
-        r.direct_variance[idx] = variance_of_mean(direct_lum_sum, direct_lum_sq_sum);
-      }
-    }
-    progress.advance();
+  Vec3 sum = Vec3::Zero();
+  double lum_sum = 0.0, lum_sq_sum = 0.0;
+  int n = 0;
+  for (int i = 0; i < paths; ++i) {
+    const GBufferSample& s = g.sample(x, y, i % spp);
+    if (!s.hit) continue;
+    const Vec3 v = estimate(s.surface, i, paths, rng);
+    sum += v;
+    const double l = luminance(v);
+    lum_sum += l;
+    lum_sq_sum += l * l;
+    ++n;
+  }
+  PixelEstimate e;
+  if (n) {
+    e.mean = sum / float(n);
+    const double mean = lum_sum / n;
+    e.variance = float(std::max(0.0, lum_sq_sum / n - mean * mean) / n);
+  }
+  return e;
+}
+
+// The environment and interreflection at a pixel: its paths' first bounces
+// a randomly shifted Hammersley set, spread over the hemisphere evenly.
+PixelEstimate estimate_indirect(const GBuffer& g, int x, int y, const Integrator& integrator, int paths,
+                                uint64_t seed) {
+  Rng rng(seed, size_t(y) * g.width() + x, kIndirectStream);
+  const Vec2 shift = rng.uniform2();
+  return estimate_pixel(g, x, y, paths, rng, [&](const SurfacePoint& p, int i, int n, Rng& r) {
+    const Vec2 first_bounce = shifted(hammersley(i, n), shift);
+    return integrator.indirect_light(p, r, &first_bounce);
   });
-  progress.end();
-  return r;
 }
 
 bool all_zero(const Image& image) {
@@ -75,7 +64,193 @@ bool all_zero(const Image& image) {
   return true;
 }
 
+// The pixels a sparse render traces: the middle pixel of each stride x
+// stride block (the last row and column clamped to the image), and the
+// surface each sees (its centre sample's, else the first that hits).
+struct SparseGrid {
+  int stride, width, height;
+  std::vector<int> xs, ys;  // the traced pixels' columns and rows
+  PixelSurfaces surfaces;
+
+  SparseGrid(const GBuffer& g, int stride) : stride(stride) {
+    const auto positions = [&](int size) {
+      std::vector<int> at;
+      for (int p = stride / 2; at.empty() || at.back() < size - 1 - stride / 2; p += stride)
+        at.push_back(std::min(p, size - 1));
+      return at;
+    };
+    xs = positions(g.width());
+    ys = positions(g.height());
+    width = int(xs.size());
+    height = int(ys.size());
+    surfaces.width = width;
+    surfaces.height = height;
+    surfaces.surface.resize(size_t(width) * height);
+    surfaces.hit.assign(surfaces.surface.size(), 0);
+    for (int j = 0; j < height; ++j)
+      for (int i = 0; i < width; ++i) {
+        const size_t k = size_t(j) * width + i;
+        for (int s = -1; s < g.samples_per_pixel() && !surfaces.hit[k]; ++s) {
+          const GBufferSample& sample = s < 0 ? g.central(xs[i], ys[j]) : g.sample(xs[i], ys[j], s);
+          surfaces.surface[k] = sample.surface;
+          surfaces.hit[k] = sample.hit;
+        }
+      }
+  }
+};
+
+// How well traced surface q stands in for p, 0..1: normals alike (a
+// crease's other side gets ~0) and q on p's plane (another surface behind
+// or in front gets ~0), as the denoiser weighs its taps.
+float stands_in_for(const SurfacePoint& p, const SurfacePoint& q) {
+  constexpr float kNormalPower = 64.0f, kPlaneSigma = 0.01f;  // the denoiser's defaults (denoise.h)
+  const float n_dot = p.normal.dot(q.normal);
+  if (n_dot <= 0.0f) return 0.0f;
+  const float plane = std::abs(p.geometric_normal.dot(q.position - p.position));
+  return std::exp(kNormalPower * std::log(n_dot) - plane / (kPlaneSigma * p.distance));
+}
+
+// Below this, a traced pixel does not count as on the surface it is asked for.
+constexpr float kLeastStandIn = 0.05f;
+
+// The traced light at p, seen at image position (px, py): the traced pixels
+// around it on p's surface, weighted by a tent over `reach` pixels; false
+// where none lies on p's surface.
+bool interpolate(const SparseGrid& grid, const Image& traced, const SurfacePoint& p, float px, float py, int reach,
+                 Vec3& out) {
+  const int s = grid.stride;
+  const int i0 = std::max(0, int(std::floor((px - reach) / s))), i1 = std::min(grid.width - 1, int((px + reach) / s));
+  const int j0 = std::max(0, int(std::floor((py - reach) / s))), j1 = std::min(grid.height - 1, int((py + reach) / s));
+  Vec3 sum = Vec3::Zero();
+  float weight = 0.0f;
+  for (int j = j0; j <= j1; ++j) {
+    const float wy = 1.0f - std::abs(float(grid.ys[j]) + 0.5f - py) / float(reach);
+    if (wy <= 0.0f) continue;
+    for (int i = i0; i <= i1; ++i) {
+      const float wx = 1.0f - std::abs(float(grid.xs[i]) + 0.5f - px) / float(reach);
+      const size_t k = size_t(j) * grid.width + i;
+      if (wx <= 0.0f || !grid.surfaces.hit[k]) continue;
+      const float stand_in = stands_in_for(p, grid.surfaces.surface[k]);
+      if (stand_in < kLeastStandIn) continue;
+      sum += wx * wy * stand_in * traced.pixels[k];
+      weight += wx * wy * stand_in;
+    }
+  }
+  if (weight <= 0.0f) return false;
+  out = sum / weight;
+  return true;
+}
+
+// Pixel (x, y)'s share of the traced light: from the traced pixels on its
+// surface (each sub-sample's where it holds an edge), the nearest first,
+// then those twice as far; false where none lies on it.
+bool interpolate_pixel(const GBuffer& g, const SparseGrid& grid, const Image& traced, int x, int y, Vec3& out) {
+  const auto at = [&](const SurfacePoint& p, float px, float py, Vec3& v) {
+    return interpolate(grid, traced, p, px, py, grid.stride, v) ||
+           interpolate(grid, traced, p, px, py, 2 * grid.stride, v);
+  };
+  if (g.one_surface(x, y)) return at(g.central(x, y).surface, x + 0.5f, y + 0.5f, out);
+  Vec3 sum = Vec3::Zero();
+  int n = 0;
+  for (int k = 0; k < g.samples_per_pixel(); ++k) {
+    const GBufferSample& s = g.sample(x, y, k);
+    if (!s.hit) continue;
+    const Vec2 pos = g.sample_position(x, y, k);
+    Vec3 v;
+    if (!at(s.surface, pos.x(), pos.y(), v)) return false;
+    sum += v;
+    ++n;
+  }
+  if (n) out = sum / float(n);
+  return n > 0;
+}
+
 }  // namespace
+
+int sparse_indirect_stride(int width, int height) {
+  const double pixels = double(width) * double(height);
+  return std::max(1, int(std::lround(std::sqrt(pixels / double(kSparseIndirectPixels)))));
+}
+
+int direct_samples_per_pixel(int paths_per_pixel, const GBuffer& g) {
+  const double pixels = double(g.width()) * double(g.height());
+  const int budget = int(std::min(double(paths_per_pixel), paths_per_pixel * double(kDirectSampledPixels) / pixels));
+  return std::max(budget, g.samples_per_pixel());
+}
+
+Image render_direct_part(const GBuffer& g, const Integrator& integrator, const IlluminationOptions& options,
+                         Progress& progress, const std::string& label) {
+  const int w = g.width(), h = g.height();
+  Image image(w, h);
+  std::vector<float> variance(image.size(), 0.0f);
+  const int samples = direct_samples_per_pixel(options.paths_per_pixel, g);
+  progress.begin(label, h);
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      if (g.coverage(x, y) <= 0.0f) continue;
+      Rng rng(options.seed, i, kDirectStream);
+      const PixelEstimate e = estimate_pixel(g, x, y, samples, rng, [&](const SurfacePoint& p, int, int, Rng& r) {
+        return integrator.direct_light(p, r);
+      });
+      image.pixels[i] = e.mean;
+      variance[i] = e.variance;
+    }
+    progress.advance();
+  });
+  progress.end();
+  // Direct light has sharp shadow edges: filter it only where its noise is
+  // far above the local differences (soft shadows of area lights). A render
+  // without direct light (the interactive engine renders it apart) has
+  // nothing to filter.
+  if (!options.denoise || all_zero(image)) return image;
+  DenoiseOptions direct_options;
+  direct_options.luminance_sigma = 1.0f;
+  direct_options.progress = &progress;
+  return denoise_illumination(image, std::move(variance), g, direct_options);
+}
+
+Image render_indirect_part(const GBuffer& g, const Integrator& integrator, const IlluminationOptions& options,
+                           Progress& progress, const std::string& label) {
+  const int w = g.width(), h = g.height();
+  const int stride = options.indirect_stride > 0 ? options.indirect_stride : sparse_indirect_stride(w, h);
+  const SparseGrid grid(g, stride);
+  Image traced(grid.width, grid.height);
+  std::vector<float> variance(traced.size(), 0.0f);
+  progress.begin(label, grid.height);
+  tbb::parallel_for(0, grid.height, [&](int j) {
+    for (int i = 0; i < grid.width; ++i) {
+      const int x = grid.xs[i], y = grid.ys[j];
+      if (g.coverage(x, y) <= 0.0f) continue;
+      const PixelEstimate e = estimate_indirect(g, x, y, integrator, options.paths_per_pixel, options.seed);
+      traced.pixels[size_t(j) * grid.width + i] = e.mean;
+      variance[size_t(j) * grid.width + i] = e.variance;
+    }
+    progress.advance();
+  });
+  progress.end();
+  if (options.denoise) {
+    DenoiseOptions indirect_options;
+    indirect_options.progress = &progress;
+    // The filter's footprint over the image stays what it is at stride 1.
+    for (int s = stride; s > 1 && indirect_options.passes > 1; s /= 2) --indirect_options.passes;
+    traced = denoise_illumination(traced, std::move(variance), grid.surfaces, indirect_options);
+  }
+  if (stride == 1) return traced;
+
+  Image image(w, h);
+  std::vector<uint8_t> own(image.size(), 0);  // pixels no traced pixel stands in for
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x)
+      if (g.coverage(x, y) > 0.0f) own[size_t(y) * w + x] = !interpolate_pixel(g, grid, traced, x, y, image.at(x, y));
+  });
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x)
+      if (own[size_t(y) * w + x])
+        image.at(x, y) = estimate_indirect(g, x, y, integrator, options.paths_per_pixel, options.seed).mean;
+  });
+  return image;
+}
 
 Image render_background(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator) {
   const int w = gbuffer.width(), h = gbuffer.height();
@@ -105,40 +280,43 @@ Image IlluminationParts::total() const {
 IlluminationParts render_illumination_parts(const GBuffer& gbuffer, const Integrator& integrator,
                                             const IlluminationOptions& options, Progress& progress,
                                             const std::string& label) {
-  PixelSums r = trace_pixels(gbuffer, integrator, nullptr, options.paths_per_pixel, options.seed, progress, label);
-  if (options.denoise) {
-    DenoiseOptions indirect_options;
-    indirect_options.progress = &progress;
-    r.indirect = denoise_illumination(r.indirect, std::move(r.indirect_variance), gbuffer, indirect_options);
-    // Direct light has sharp shadow edges: filter it only where its noise is
-    // far above the local differences (soft shadows of area lights). A render
-    // without direct light (the interactive engine renders it apart) has
-    // nothing to filter.
-    DenoiseOptions direct_options;
-    direct_options.luminance_sigma = 1.0f;
-    direct_options.progress = &progress;
-    if (!all_zero(r.direct))
-      r.direct = denoise_illumination(r.direct, std::move(r.direct_variance), gbuffer, direct_options);
-  }
-  return {std::move(r.direct), std::move(r.indirect)};
+  Image direct = render_direct_part(gbuffer, integrator, options, progress, label + ": direct light");
+  return {std::move(direct), render_indirect_part(gbuffer, integrator, options, progress, label)};
 }
 
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
-                                       const IlluminationOptions& options, Progress& progress,
-                                       const std::string& label) {
-  return {render_illumination_parts(gbuffer, integrator, options, progress, label).total(),
-          render_background(gbuffer, camera, integrator)};
+                                       const IlluminationOptions& options, Progress& progress, const std::string& label,
+                                       const Image* direct) {
+  IlluminationParts parts{
+      direct ? *direct : render_direct_part(gbuffer, integrator, options, progress, label + ": direct light"),
+      render_indirect_part(gbuffer, integrator, options, progress, label)};
+  return {parts.total(), render_background(gbuffer, camera, integrator)};
 }
 
 Image synthesize_photo(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                        const SurfaceAlbedo& albedo, int paths_per_pixel, uint64_t seed, Progress& progress) {
-  const PixelSums r = trace_pixels(gbuffer, integrator, &albedo, paths_per_pixel, seed, progress, "photo");
+  const int w = gbuffer.width(), h = gbuffer.height();
   const Image background = render_background(gbuffer, camera, integrator);
-  Image photo(gbuffer.width(), gbuffer.height());
-  for (size_t i = 0; i < photo.size(); ++i) {
-    const float c = gbuffer.coverage()[i];
-    photo.pixels[i] = c * (r.direct.pixels[i] + r.indirect.pixels[i]) + (1.0f - c) * background.pixels[i];
-  }
+  Image photo(w, h);
+  progress.begin("photo", h);
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      Rng rng(seed, i, kPhotoStream);
+      const Vec2 shift = rng.uniform2();
+      const PixelEstimate e =
+          estimate_pixel(gbuffer, x, y, paths_per_pixel, rng, [&](const SurfacePoint& p, int k, int n, Rng& r) {
+            const Vec2 first_bounce = shifted(hammersley(k, n), shift);
+            Vec3 d, ind;
+            integrator.illumination(p, r, d, ind, &first_bounce);
+            return Vec3((d + ind).cwiseProduct(albedo.at(p)));
+          });
+      const float c = gbuffer.coverage()[i];
+      photo.pixels[i] = c * e.mean + (1.0f - c) * background.pixels[i];
+    }
+    progress.advance();
+  });
+  progress.end();
   return photo;
 }
 

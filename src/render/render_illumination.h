@@ -2,6 +2,15 @@
 // pixel's samples that see geometry, of the light a white diffuse surface
 // there would reflect; and the mean environment radiance over those that see
 // the background. Multithreaded, deterministic for a seed.
+//
+// The two parts of the light are rendered at different densities. The
+// lights' direct light, with its sharp shadows, is traced at every pixel.
+// The rest — the environment and all interreflection — is smooth almost
+// everywhere: it is traced at every `indirect_stride`-th pixel each way,
+// denoised there, and interpolated between them along the surfaces (a
+// pixel takes only the traced pixels that lie on its own surface, each of
+// its sub-pixel samples apart where it holds an edge); a pixel with none on
+// its surface (a thin pole between them) traces its own.
 #pragma once
 
 #include "core/image.h"
@@ -21,7 +30,22 @@ struct IlluminationOptions {
   int paths_per_pixel = 64;  // spread evenly over the pixel's G-buffer samples
   uint64_t seed = 1;
   bool denoise = true;       // filter the environment + interreflection part
+  // The environment and interreflection traced at every this-many-th pixel
+  // each way (1: every pixel; 0: sparse_indirect_stride of the image).
+  int indirect_stride = 0;
 };
+
+// The stride for a width x height image: about kSparseIndirectPixels traced
+// (every pixel of a smaller one).
+inline constexpr int64_t kSparseIndirectPixels = 1 << 19;
+int sparse_indirect_stride(int width, int height);
+
+// The direct light's samples per pixel: paths_per_pixel up to
+// kDirectSampledPixels pixels, fewer beyond, so that a larger image takes
+// no more samples in all — down to one per sub-pixel sample (a shadow's edge
+// is still anti-aliased; a soft shadow's noise is left to the denoiser).
+inline constexpr int64_t kDirectSampledPixels = 1 << 20;
+int direct_samples_per_pixel(int paths_per_pixel, const GBuffer& gbuffer);
 
 // A synthetic photo: each camera sample's illumination times the albedo of
 // the surface it sees, the environment where it sees none; no denoising.
@@ -45,8 +69,17 @@ IlluminationParts render_illumination_parts(const GBuffer& gbuffer, const Integr
                                             const IlluminationOptions& options, Progress& progress,
                                             const std::string& label = "illumination");
 
+// The two parts alone. The direct part depends only on the lights (not on
+// the albedo light bounces off): an analysis renders it once.
+Image render_direct_part(const GBuffer& gbuffer, const Integrator& integrator, const IlluminationOptions& options,
+                         Progress& progress, const std::string& label = "direct light");
+Image render_indirect_part(const GBuffer& gbuffer, const Integrator& integrator, const IlluminationOptions& options,
+                           Progress& progress, const std::string& label = "illumination");
+
+// direct, where given, is render_direct_part's image of these lights and
+// options, rendered before.
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                                        const IlluminationOptions& options, Progress& progress,
-                                       const std::string& label = "illumination");
+                                       const std::string& label = "illumination", const Image* direct = nullptr);
 
 }  // namespace relight
