@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes a copy of a scene whose photo (and mask, true albedo and true re-lit
-photos, where present) is N times as wide and tall, resampled with a
+photos, where present) N times as wide and tall (N need not be whole), resampled with a
 Lanczos filter: a camera-sized stand-in for docs/benchmarks.md's "Photo
 size" figures. The geometry, probes and rigs are the original's, copied (the
 camera takes its resolution from the photo).
@@ -11,14 +11,14 @@ import OpenImageIO as oiio
 
 from scene_json import load_absolute
 
-scene_dir, out_dir, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
+scene_dir, out_dir, n = sys.argv[1], sys.argv[2], float(sys.argv[3])
 os.makedirs(os.path.join(out_dir, "relit"), exist_ok=True)
 
 
 def upsample(src, dst):
     image = oiio.ImageBuf(src)
     spec = image.spec()
-    roi = oiio.ROI(0, spec.width * n, 0, spec.height * n, 0, 1, 0, spec.nchannels)
+    roi = oiio.ROI(0, round(spec.width * n), 0, round(spec.height * n), 0, 1, 0, spec.nchannels)
     # Lanczos rings below zero beside bright edges: radiance is clamped at 0.
     bigger = oiio.ImageBufAlgo.max(oiio.ImageBufAlgo.resize(image, "lanczos3", roi=roi), 0.0)
     if not bigger.write(dst, "half"):

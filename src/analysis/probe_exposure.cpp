@@ -47,7 +47,7 @@ std::optional<size_t> photo_pixel_showing(const Scene& scene, const GBuffer& gbu
     return std::nullopt;
   const size_t i = size_t(y) * gbuffer.width() + x;
   if (i < scene.photo_clipped.size() && scene.photo_clipped[i]) return std::nullopt;
-  const SurfacePoint& seen = gbuffer.central(x, y).surface;
+  const SurfacePoint seen = gbuffer.central(x, y).surface;
   const float camera_distance = (point.position - scene.camera.position()).norm();
   if ((seen.position - point.position).norm() > 0.01f * camera_distance) return std::nullopt;  // hidden
   const Vec3& n = point.geometric_normal;

@@ -90,25 +90,44 @@ bool RayScene::intersect(const Vec3& origin, const Vec3& dir, SurfacePoint& hit,
   rtcIntersect1(embree_->scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
-  hit.prim = rh.hit.primID;
-  hit.distance = rh.ray.tfar;
-  hit.position = origin + dir * rh.ray.tfar;
-  Vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  describe_hit(rh.hit.primID, origin, dir, rh.ray.tfar, rh.hit.u, rh.hit.v, Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z),
+               hit);
+  return true;
+}
+
+bool RayScene::intersect_triangle(uint32_t prim, const Vec3& origin, const Vec3& dir, SurfacePoint& hit) const {
+  // Moller-Trumbore, without the bounds: the ray is known to hit it.
+  const auto& tri = mesh_.triangles[prim];
+  const Vec3 &p0 = mesh_.positions[tri[0]], &p1 = mesh_.positions[tri[1]], &p2 = mesh_.positions[tri[2]];
+  const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+  const Vec3 q = dir.cross(e2);
+  const float det = e1.dot(q);
+  if (std::abs(det) < 1e-20f) return false;
+  const Vec3 s = origin - p0, r = s.cross(e1);
+  const float u = s.dot(q) / det, v = dir.dot(r) / det, t = e2.dot(r) / det;
+  describe_hit(prim, origin, dir, t, u, v, e1.cross(e2), hit);
+  return true;
+}
+
+void RayScene::describe_hit(uint32_t prim, const Vec3& origin, const Vec3& dir, float t, float u, float v, Vec3 ng,
+                            SurfacePoint& hit) const {
+  hit.prim = prim;
+  hit.distance = t;
+  hit.position = origin + dir * t;
   ng.normalize();
   if (ng.dot(dir) > 0.0f) ng = -ng;  // face the ray's origin
   hit.geometric_normal = ng;
   hit.normal = ng;
+  hit.lift = 0.0f;
   if (mesh_.has_normals()) {
-    const auto& t = mesh_.triangles[hit.prim];
-    const float u = rh.hit.u, v = rh.hit.v;
-    Vec3 ns = (1.0f - u - v) * mesh_.normals[t[0]] + u * mesh_.normals[t[1]] + v * mesh_.normals[t[2]];
+    const auto& tri = mesh_.triangles[prim];
+    Vec3 ns = (1.0f - u - v) * mesh_.normals[tri[0]] + u * mesh_.normals[tri[1]] + v * mesh_.normals[tri[2]];
     if (ns.squaredNorm() > 0.0f) {
       ns.normalize();
       hit.normal = ns.dot(ng) < 0.0f ? Vec3(-ns) : ns;
     }
-    hit.lift = smooth_surface_lift(mesh_, hit.position, ng, t, Vec3(1.0f - u - v, u, v));
+    hit.lift = smooth_surface_lift(mesh_, hit.position, ng, tri, Vec3(1.0f - u - v, u, v));
   }
-  return true;
 }
 
 bool RayScene::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {

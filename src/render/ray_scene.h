@@ -77,6 +77,10 @@ class RayScene {
   // Closest surface along the ray (dir unit) in (0, tmax); false if none.
   bool intersect(const Vec3& origin, const Vec3& dir, SurfacePoint& hit,
                  float tmax = std::numeric_limits<float>::infinity()) const;
+  // Where the ray meets the plane of triangle `prim`, as intersect would
+  // report a hit on it (the G-buffer recomputes its samples so rather than
+  // keep them); false where the ray runs along the plane.
+  bool intersect_triangle(uint32_t prim, const Vec3& origin, const Vec3& dir, SurfacePoint& hit) const;
   // True if anything blocks the segment origin + t dir, t in (0, tmax).
   bool occluded(const Vec3& origin, const Vec3& dir, float tmax) const;
   // The same for a packet of rays at once; then packet.blocked(j) answers.
@@ -116,6 +120,10 @@ class RayScene {
   const TriangleMesh& mesh() const { return mesh_; }
 
  private:
+  // A hit on triangle `prim` at distance t along the ray, at barycentric
+  // (u, v) (the weights of its second and third vertex), ng its normal.
+  void describe_hit(uint32_t prim, const Vec3& origin, const Vec3& dir, float t, float u, float v, Vec3 ng,
+                    SurfacePoint& hit) const;
   struct Embree;
   const TriangleMesh& mesh_;
   std::unique_ptr<Embree> embree_;

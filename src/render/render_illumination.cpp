@@ -24,11 +24,13 @@ template <class Estimate>
 PixelEstimate estimate_pixel(const GBuffer& g, int x, int y, int paths_per_pixel, Rng& rng, const Estimate& estimate) {
   const int spp = g.samples_per_pixel();
   const int paths = std::max(paths_per_pixel, spp);
+  thread_local std::vector<GBufferSample> samples;  // fetched once: most are recomputed when asked for
+  g.pixel_samples(x, y, samples);
   Vec3 sum = Vec3::Zero();
   double lum_sum = 0.0, lum_sq_sum = 0.0;
   int n = 0;
   for (int i = 0; i < paths; ++i) {
-    const GBufferSample& s = g.sample(x, y, i % spp);
+    const GBufferSample& s = samples[size_t(i % spp)];
     if (!s.hit) continue;
     const Vec3 v = estimate(s.surface, i, paths, rng);
     sum += v;
@@ -257,6 +259,7 @@ Image render_background(const GBuffer& gbuffer, const Camera& camera, const Inte
   Image out(w, h);
   tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
+      if (gbuffer.coverage(x, y) >= 1.0f) continue;  // no sample sees the background
       Vec3 sum = Vec3::Zero();
       int n = 0;
       for (int k = 0; k < gbuffer.samples_per_pixel(); ++k) {
