@@ -13,6 +13,7 @@ packages=(
   libxxhash-dev                      # content hashes of the analysis inputs
   libopencv-dev                      # registration (Canny, distance transforms), hdr-merge (photo module), probe-from-photo (HoughCircles)
   blender                            # blender_test: the Blender exporter (about a minute to install)
+  python3-openimageio python3-numpy  # bench/*.py scripts that read and write images (upsample_scene.py)
   clang-14 libclang-rt-14-dev llvm-14  # asan and fuzz presets: clang, libFuzzer, llvm-symbolizer
 )
 

@@ -16,6 +16,7 @@ void AnalysedScene::set_analysis(Analysis analysis) {
 }
 
 std::unique_ptr<AnalysedScene> AnalysedScene::from_folder(Scene&& scene, const std::filesystem::path& folder) {
+  if (is_preview_analysis(folder)) reduce_for_preview(scene);
   Analysis analysis = load_analysis(folder, scene);
   if (analysis.registered_camera)
     scene.camera = Camera(*analysis.registered_camera, scene.camera.width(), scene.camera.height());
@@ -27,6 +28,7 @@ std::unique_ptr<AnalysedScene> AnalysedScene::from_folder(Scene&& scene, const s
 
 std::unique_ptr<AnalysedScene> AnalysedScene::analyse(Scene&& scene, const AnalysisOptions& options, Progress& progress,
                                                       const AlbedoObserver& on_albedo) {
+  if (options.preview) reduce_for_preview(scene);
   std::unique_ptr<AnalysedScene> s(new AnalysedScene(std::move(scene)));
   const std::optional<CameraSpec> registered = camera_for_analysis(s->scene_, *s->rays_, options, progress);
   s->gbuffer_ = std::make_unique<GBuffer>(scene_gbuffer(s->scene_, *s->rays_, options));

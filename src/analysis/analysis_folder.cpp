@@ -63,6 +63,7 @@ void write_options(nlohmann::json& j, const AnalysisOptions& o) {
   j["indirect_stride"] = o.indirect_stride;
   if (o.align_edges) j["align_edges"] = true;
   if (o.keep_camera) j["keep_camera"] = true;
+  if (o.preview) j["preview"] = true;
   if (o.method == AnalysisMethod::radiosity) {
     j["node_samples"] = o.node_samples;
     j["gather_rays"] = o.gather_rays;
@@ -98,6 +99,7 @@ AnalysisOptions read_options(const JsonReader& r, const nlohmann::json& j) {
   if (o.indirect_stride < 1) r.fail("/indirect_stride", "must be at least 1");
   if (const nlohmann::json* v = r.optional(j, "align_edges")) o.align_edges = r.boolean(*v, "/align_edges");
   if (const nlohmann::json* v = r.optional(j, "keep_camera")) o.keep_camera = r.boolean(*v, "/keep_camera");
+  if (const nlohmann::json* v = r.optional(j, "preview")) o.preview = r.boolean(*v, "/preview");
   if (o.method == AnalysisMethod::radiosity) {
     o.node_samples = count("node_samples");
     o.gather_rays = count("gather_rays");
@@ -177,6 +179,15 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   j["unseen_triangles"] = std::move(triangles);
   write_text_atomically(folder / "analysis.json", json_text(j));
   batch.commit();
+}
+
+bool is_preview_analysis(const fs::path& folder) {
+  try {
+    const nlohmann::json j = JsonReader::parse_file(folder / "analysis.json");
+    return j.is_object() && j.value("preview", false);
+  } catch (const std::exception&) {
+    return false;
+  }
 }
 
 Analysis load_analysis(const fs::path& folder, const Scene& scene) {

@@ -21,6 +21,10 @@ void save_analysis(const std::filesystem::path& folder, const Analysis& analysis
 // (made from a scene.json, photo, geometry or probe that has changed since),
 // or holds images other than those its analysis.json describes.
 Analysis load_analysis(const std::filesystem::path& folder, const Scene& scene);
+// Whether the folder's analysis.json marks a preview (made of the photo
+// reduced: reduce_for_preview); false where it cannot be read (load_analysis
+// then says why).
+bool is_preview_analysis(const std::filesystem::path& folder);
 
 // A hash of everything an analysis depends on: the scene.json file, the
 // photo, geometry and probe files (their bytes), and the options that

@@ -9,6 +9,7 @@
 #include "analysis/radiosity_illumination.h"
 #include "analysis/surface_albedo.h"
 #include "core/error.h"
+#include "io/image_io.h"
 
 namespace relight {
 
@@ -38,6 +39,37 @@ std::optional<BounceSource> parse_bounce_source(const std::string& s) {
   if (s == "photo") return BounceSource::photo;
   if (s == "albedo") return BounceSource::albedo;
   return std::nullopt;
+}
+
+AnalysisOptions preview_options(AnalysisOptions full) {
+  constexpr int kPathsDivisor = 8, kLeastPaths = 4;
+  full.paths_per_pixel = std::max(std::min(kLeastPaths, full.paths_per_pixel), full.paths_per_pixel / kPathsDivisor);
+  full.gbuffer_samples = 1;
+  full.preview = true;
+  return full;
+}
+
+void reduce_for_preview(Scene& scene) {
+  const int w = scene.photo.width, h = scene.photo.height;
+  const double scale = std::sqrt(double(kPreviewPixels) / (double(w) * double(h)));
+  if (scale >= 1.0) return;
+  const int rw = std::max(1, int(std::lround(w * scale))), rh = std::max(1, int(std::lround(h * scale)));
+  scene.photo = resized(scene.photo, rw, rh);
+  if (!scene.photo_clipped.empty()) {
+    // A reduced pixel is clipped where any pixel it covers is.
+    Image clipped(w, h);
+    for (size_t i = 0; i < clipped.size(); ++i) clipped.pixels[i] = Vec3::Constant(scene.photo_clipped[i]);
+    const Image reduced = resized(clipped, rw, rh);
+    scene.photo_clipped.assign(reduced.size(), 0);
+    for (size_t i = 0; i < reduced.size(); ++i) scene.photo_clipped[i] = reduced.pixels[i].x() > 0.0f;
+  }
+  const Vec2 to_reduced(float(rw) / float(w), float(rh) / float(h));
+  if (scene.reference) {
+    for (Vec2& p : scene.reference->polygon) p = p.cwiseProduct(to_reduced);
+    for (Vec2& p : scene.reference->colorchecker) p = p.cwiseProduct(to_reduced);
+  }
+  scene.camera = Camera(scene.camera.spec(), rw, rh);
+  spdlog::info("preview: the photo reduced from {}x{} to {}x{}", w, h, rw, rh);
 }
 
 RadiosityOptions radiosity_options(const AnalysisOptions& options) {

@@ -50,6 +50,8 @@ struct AnalysisOptions {
   // each way (render_illumination.h); 0: sparse_indirect_stride of the
   // photo, which analyze() puts in its result's options.
   int indirect_stride = 0;
+  // A quick analysis made to be replaced (preview_options).
+  bool preview = false;
   int max_iterations = 4;                             // interreflection re-renders at most (bounce source albedo)
   float tolerance = 0.005f;                           // stop when the mean albedo change is below this
   // Divide by the illumination with its edges moved onto the photo's
@@ -65,6 +67,18 @@ struct AnalysisOptions {
   // (paths_per_pixel samples) rather than interpolated from the nodes.
   bool direct_per_pixel = true;
 };
+
+// A preview of the analysis `full` would make, in a fraction of its time,
+// to show while it runs: an eighth of the paths (at least 4), one sample
+// per pixel (no anti-aliasing of edges), the rest as `full`; made of the
+// photo reduced to at most kPreviewPixels (reduce_for_preview).
+AnalysisOptions preview_options(AnalysisOptions full);
+inline constexpr int64_t kPreviewPixels = 1 << 19;
+// The scene with its photo (and what is given in its pixels: the clipped
+// mask, a grey card's polygon, a chart's corners) reduced to at most
+// kPreviewPixels, the camera bound to the smaller photo; a smaller photo is
+// left as it is.
+void reduce_for_preview(Scene& scene);
 
 // The radiosity solver's settings of an analysis.
 RadiosityOptions radiosity_options(const AnalysisOptions& options);

@@ -22,15 +22,16 @@ namespace {
 struct AnalyzeArgs {
   std::string scene, out, strategy, interreflection = "on", method = "path", direct_light = "pixels",
                                     bounce_source = "photo";
-  bool save_renders = false;
+  bool save_renders = false, preview = false;
   AnalysisOptions options;
 };
 
 void run_analyze(const AnalyzeArgs& args, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  LoadedScene s = load_for_analysis(args.scene, args.options, progress, CameraUse::for_analysis);
+  const AnalysisOptions requested = args.preview ? preview_options(args.options) : args.options;
+  LoadedScene s = load_for_analysis(args.scene, requested, progress, CameraUse::for_analysis);
   warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
-  AnalysisOptions options = args.options;
+  AnalysisOptions options = requested;
   options.strategy = args.strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args.strategy);
   options.interreflection = args.interreflection == "on";
   options.method = *parse_analysis_method(args.method);
@@ -53,9 +54,10 @@ void run_analyze(const AnalyzeArgs& args, Progress& progress) {
                                    ? std::to_string(options.paths_per_pixel) + " spp"
                                    : "radiosity, " + std::to_string(options.node_samples) + " samples and " +
                                          std::to_string(options.gather_rays) + " rays per node";
-  std::printf("analysis (%s, %s, %d render%s, residual %.1f %%) written to %s in %.1f s\n", to_string(options.strategy),
-              sampling.c_str(), analysis.iterations, analysis.iterations > 1 ? "s" : "", 100.0 * analysis.residual,
-              args.out.c_str(), secs);
+  std::printf("%s (%s, %s, %d render%s, residual %.1f %%) written to %s in %.1f s\n",
+              options.preview ? "preview analysis" : "analysis", to_string(options.strategy), sampling.c_str(),
+              analysis.iterations, analysis.iterations > 1 ? "s" : "", 100.0 * analysis.residual, args.out.c_str(),
+              secs);
 }
 
 }  // namespace
@@ -111,6 +113,11 @@ void add_analyze_command(CLI::App& app, Action& action) {
                   "0: about 524 000 pixels traced (1 at 640x480, 2 at 1280x960, 7 at 24 Mpixel)")
       ->check(CLI::Range(0, 64))
       ->capture_default_str();
+  cmd->add_flag(
+      "--preview", args->preview,
+      "a quick analysis to look at before the full one: of the photo reduced to at most 0.5 Mpixel, an eighth "
+      "of the paths (--spp / 8, at least 4), one sample per pixel; analysis.json marks it a preview, and "
+      "renders of it are of the reduced size");
   cmd->add_flag("--save-renders", args->save_renders,
                 "also write the albedo each render recovered, albedo_render1.exr (white surfaces), "
                 "albedo_render2.exr, ... (to follow the interreflection iteration)");

@@ -69,6 +69,7 @@ LoadedScene load_for_analysis(const std::string& scene_path, const AnalysisOptio
   LoadedScene s;
   s.scene = load_scene(scene_path, progress);
   log_scene(s.scene, scene_path);
+  if (options.preview) reduce_for_preview(s.scene);
   s.rays = std::make_unique<RayScene>(s.scene.mesh);
   if (camera == CameraUse::for_analysis) s.registered_camera = camera_for_analysis(s.scene, *s.rays, options, progress);
   s.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s.scene, *s.rays, options));

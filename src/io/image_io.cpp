@@ -1,5 +1,7 @@
 #include "io/image_io.h"
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <spdlog/spdlog.h>
 
@@ -116,6 +118,16 @@ void expect_within_pixel_limit(const std::string& name, const char* what, int64_
                      fmt::format("{} of {}x{} ({:.1f} Mpixel) is over the limit of {:.1f} Mpixel "
                                  "(raise it with --max-pixels or RELIGHT_MAX_PIXELS)",
                                  what, width, height, pixels * 1e-6, max_image_pixels() * 1e-6));
+}
+
+Image resized(const Image& image, int width, int height) {
+  const OIIO::ImageSpec from(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
+  const OIIO::ImageBuf source(from, const_cast<Vec3*>(image.pixels.data()));
+  const OIIO::ImageBuf result =
+      OIIO::ImageBufAlgo::resize(source, "box", 0.0f, OIIO::ROI(0, width, 0, height, 0, 1, 0, 3));
+  Image out(width, height);
+  result.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, out.pixels.data());
+  return out;
 }
 
 Image read_image(const fs::path& path, std::vector<uint8_t>* clipped) {

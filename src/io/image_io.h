@@ -39,6 +39,10 @@ inline constexpr float kMaxPixelValue = 1.0e20f;
 // left empty for an HDR (floating-point) file, which clips nothing.
 Image read_image(const std::filesystem::path& path, std::vector<uint8_t>* clipped = nullptr);
 
+// `image` resampled to width x height, each output pixel the mean of the
+// input it covers (a box filter: radiance kept, no ringing).
+Image resized(const Image& image, int width, int height);
+
 // An 8-bit camera image as stored (the camera's tone curve not undone), for
 // merging brackets: RGB codes 0-255, and the exposure time (s) from its EXIF
 // ExposureTime, 0 where the file has none. 16-bit files are rounded to 8 bits.
