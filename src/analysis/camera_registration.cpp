@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -35,20 +36,32 @@ std::vector<EdgeField> edge_pyramid(const Image& photo, int levels) {
 }
 
 // The geometry's edges seen through `camera`: wherever two neighbouring
-// pixels of a one-sample G-buffer see different surfaces (or one sees
-// none), the point on the nearer surface where it ends, found to 1/16 pixel
-// by bisection along the two pixels' centres. On the nearer surface: a
-// silhouette is the occluder's edge, and it stays on it when the camera moves.
+// pixels' centres see different surfaces (or one sees none), the point on
+// the nearer surface where it ends, found to 1/16 pixel by bisection along
+// the two pixels' centres. On the nearer surface: a silhouette is the
+// occluder's edge, and it stays on it when the camera moves. Each row and
+// the next are traced where they are compared, rather than kept for the
+// whole photo.
 std::vector<Vec3> geometry_edges(const Camera& camera, const RayScene& rays, const std::string& scene_file) {
-  const GBuffer g(camera, rays, 1, 1, scene_file);
-  const int w = g.width(), h = g.height();
+  const int w = camera.width(), h = camera.height();
+  const auto trace_row = [&](int y, std::vector<GBufferSample>& row) {
+    row.resize(size_t(w));
+    for (int x = 0; x < w; ++x)
+      row[size_t(x)].hit =
+          y < h && rays.intersect(camera.position(), camera.ray_direction(x + 0.5f, y + 0.5f), row[size_t(x)].surface);
+  };
+  std::atomic<bool> any_hit{false};
   std::vector<std::vector<Vec3>> rows(h);
   tbb::parallel_for(0, h, [&](int y) {
+    std::vector<GBufferSample> row, next;
+    trace_row(y, row);
+    trace_row(y + 1, next);
     for (int x = 0; x < w; ++x)
       for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
         const int nx = x + dx, ny = y + dy;
         if (nx >= w || ny >= h) continue;
-        const GBufferSample &a = g.central(x, y), &b = g.central(nx, ny);
+        const GBufferSample &a = row[size_t(x)], &b = dy ? next[size_t(x)] : row[size_t(nx)];
+        if (a.hit) any_hit = true;
         if (!a.hit && !b.hit) continue;
         if (a.hit && b.hit && GBuffer::same_surface(a.surface, b.surface)) continue;
         const bool a_near = a.hit && (!b.hit || a.surface.distance <= b.surface.distance);
@@ -70,6 +83,8 @@ std::vector<Vec3> geometry_edges(const Camera& camera, const RayScene& rays, con
         rows[y].push_back(point);
       }
   });
+  if (!any_hit)
+    throw InputError(scene_file, "/camera", "the camera sees no geometry: check position, look_at and the mesh");
   std::vector<Vec3> points;
   for (const auto& r : rows) points.insert(points.end(), r.begin(), r.end());
   return points;
