@@ -290,6 +290,38 @@ class StudioTest : public QObject {
     QCOMPARE(document().light(0).name, std::string("lamp"));
   }
 
+  // A photo over preview_above_pixels opens with a preview analysis; the
+  // full one runs meanwhile and takes its place, the lights moved meanwhile
+  // kept, and is what the cache keeps.
+  void a_large_photo_opens_with_a_preview_and_the_full_analysis_follows() {
+    StudioOptions options = quick_options();
+    options.preview_above_pixels = 1;  // the test scene's photo counts as large
+    window_ = std::make_unique<MainWindow>(options);
+    const fs::path other = fs::path(folder_.path().toStdString()) / "large";
+    fs::remove_all(other);
+    fs::create_directories(other);
+    for (const char* f : {"scene.json", "photo.exr", "geometry.obj"})
+      fs::copy_file(fs::path(folder_.path().toStdString()) / f, other / f);
+    QSignalSpy opened(window_.get(), &MainWindow::sceneOpened);
+    QSignalSpy full(window_.get(), &MainWindow::fullAnalysisDone);
+    window_->open_scene(QString::fromStdString((other / "scene.json").string()));
+    QVERIFY(opened.wait(240000));
+    QVERIFY(document().studio_scene().preview);
+    QCOMPARE(document().studio_scene().analysed->analysis().options.paths_per_pixel, 4);  // 4 / 8, at least 4
+    QCOMPARE(document().studio_scene().analysed->analysis().options.gbuffer_samples, 1);
+    QVERIFY(window_->busy());  // the full analysis
+    Light moved = document().light(0);
+    moved.position += Vec3(0.1f, 0.0f, 0.0f);
+    document().set_light(0, moved);
+    QVERIFY(full.wait(240000));
+    QCOMPARE(full.at(0).at(0).toString(), QString());
+    QVERIFY(!document().studio_scene().preview);
+    QCOMPARE(document().studio_scene().analysed->analysis().options.gbuffer_samples, 9);
+    expect_same_light(document().light(0), moved);
+    QVERIFY(fs::exists(other / "scene.analysis" / "analysis.json"));
+    QVERIFY(!window_->busy());
+  }
+
   void saved_rigs_are_remembered_as_recent() {
     StudioOptions options = quick_options();
     options.remember_recent = true;

@@ -288,10 +288,11 @@ void MainWindow::open_scene(const QString& scene_path, const QString& rig_path, 
   auto loaded = std::make_shared<std::shared_ptr<const StudioScene>>();
   const AnalysisOptions analysis = options_.analysis;
   const std::string path = scene_path.toStdString(), folder = analysis_folder.toStdString();
+  const int64_t preview_above = options_.preview_above_pixels;
   run_task((analysis_folder.isEmpty() ? tr("Analysing %1\u2026") : tr("Opening %1\u2026"))
                .arg(QFileInfo(scene_path).fileName()),
-           [loaded, analysis, path, folder](Progress& progress) {
-             *loaded = load_studio_scene(path, analysis, progress, folder);
+           [loaded, analysis, path, folder, preview_above](Progress& progress) {
+             *loaded = load_studio_scene(path, analysis, progress, folder, preview_above);
            },
            [this, loaded, scene_path, rig_path](const QString& error) {
              if (!error.isEmpty()) {
@@ -301,14 +302,38 @@ void MainWindow::open_scene(const QString& scene_path, const QString& rig_path, 
              }
              install_scene(*loaded, scene_path, rig_path);
              emit sceneOpened();
+             if (scene_->preview) replace_preview();
            });
 }
 
+void MainWindow::replace_preview() {
+  auto loaded = std::make_shared<std::shared_ptr<const StudioScene>>();
+  const AnalysisOptions analysis = options_.analysis;
+  const std::string path = scene_path_.toStdString();
+  run_task(
+      tr("Analysing %1 in full (the preview meanwhile)\u2026").arg(QFileInfo(scene_path_).fileName()),
+      [loaded, analysis, path](Progress& progress) { *loaded = load_studio_scene(path, analysis, progress); },
+      [this, loaded](const QString& error) {
+        if (!error.isEmpty()) {
+          statusBar()->showMessage(
+              error == "cancelled"
+                  ? tr("The full analysis was cancelled: the preview stays (reopen the scene to analyse it)")
+                  : tr("The full analysis failed (%1): the preview stays").arg(error),
+              8000);
+          emit fullAnalysisDone(error);
+          return;
+        }
+        const Rig rig = document_->rig();
+        install_scene(*loaded, scene_path_, rig_path_, &rig);
+        emit fullAnalysisDone({});
+      });
+}
+
 void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path,
-                               const QString& rig_path) {
-  Rig rig = rig_from_scene(scene->analysed->scene());
-  QString loaded_rig_path;
-  if (!rig_path.isEmpty()) {
+                               const QString& rig_path, const Rig* keep_rig) {
+  Rig rig = keep_rig ? *keep_rig : rig_from_scene(scene->analysed->scene());
+  QString loaded_rig_path = keep_rig ? rig_path : QString();
+  if (!keep_rig && !rig_path.isEmpty()) {
     try {
       rig = load_rig(rig_path.toStdString());
       loaded_rig_path = rig_path;
@@ -350,7 +375,8 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   remember(kRecentScenes, scene_path);
   if (!rig_path_.isEmpty()) remember(kRecentRigs, rig_path_);
   QString opened =
-      scene_->from_cache
+      scene_->preview ? tr("A preview analysis (a reduced photo, few paths); the full one follows")
+      : scene_->from_cache
           ? tr("Analysis read from %1").arg(QString::fromStdString(scene_->analysis_folder.filename().string()))
           : tr("Scene analysed; the analysis is kept next to the scene for next time");
   if (scene_->analysed->analysis().registered_camera)

@@ -33,6 +33,9 @@ struct StudioOptions {
   AnalysisOptions analysis;   // for a scene without a cached analysis
   SessionOptions session;     // its backend draws moving lights; its view size is chosen from the photo
   int max_view_width = 1280;  // larger photos are shown (and edited) smaller; an export is always full size
+  // A photo of more pixels than this is shown with a preview analysis first
+  // while the full one runs (0: never).
+  int64_t preview_above_pixels = kPreviewPixels;
   bool remember_recent = true;
 };
 // The defaults of the application: the OpenGL backend where it can open.
@@ -110,6 +113,9 @@ class MainWindow : public QMainWindow {
 
  signals:
   void sceneOpened();
+  // The full analysis replaced the preview the scene opened with (or
+  // failed: the preview stays).
+  void fullAnalysisDone(const QString& error);
   void openFailed(const QString& error);
   void exportFinished(const QString& error);
 
@@ -119,7 +125,13 @@ class MainWindow : public QMainWindow {
  private:
   void connect_panels();
   void make_menus();
-  void install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path, const QString& rig_path);
+  // keep_rig: the lights being edited (a preview replaced), else those of
+  // rig_path or the scene.
+  void install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path, const QString& rig_path,
+                     const Rig* keep_rig = nullptr);
+  // Analyses the open scene in full on a worker and puts it in the
+  // preview's place, keeping the rig.
+  void replace_preview();
   void run_task(const QString& label, BackgroundTask::Work work, std::function<void(const QString&)> done);
   void show_error(const QString& text);
   bool maybe_keep_changes();  // false: the user cancelled

@@ -16,7 +16,8 @@ fs::path analysis_cache_folder(const fs::path& scene_path) {
 }
 
 std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const AnalysisOptions& options,
-                                               Progress& progress, const fs::path& analysis_folder) {
+                                               Progress& progress, const fs::path& analysis_folder,
+                                               int64_t preview_above_pixels) {
   auto s = std::make_unique<StudioScene>();
   Scene scene = load_scene(scene_path, progress);
   if (!analysis_folder.empty()) {
@@ -36,6 +37,11 @@ std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const
   }
   AnalysisOptions analysis_options = options;
   analysis_options.strategy = default_strategy(scene);
+  if (preview_above_pixels > 0 && int64_t(scene.photo.width) * scene.photo.height > preview_above_pixels) {
+    s->analysed = AnalysedScene::analyse(std::move(scene), preview_options(analysis_options), progress);
+    s->preview = true;
+    return s;
+  }
   std::unique_ptr<AnalysedScene> analysed = AnalysedScene::analyse(std::move(scene), analysis_options, progress);
   try {
     save_analysis(cache, analysed->analysis(), analysed->scene());

@@ -16,6 +16,7 @@ namespace relight::gui {
 struct StudioScene {
   std::unique_ptr<const AnalysedScene> analysed;
   bool from_cache = false;                // the analysis was read from a folder, not made now
+  bool preview = false;                   // a quick analysis (preview_options), to be replaced by the full one
   std::filesystem::path analysis_folder;  // where it was read from or written to
 };
 
@@ -28,8 +29,11 @@ std::filesystem::path analysis_cache_folder(const std::filesystem::path& scene_p
 // holds one for these inputs, else analysed now with `options` (the strategy
 // the scene's data suggests) and written to the cache. A cache that cannot be
 // written is only a warning. Throws InputError for a bad scene, Cancelled if
-// progress is cancelled.
+// progress is cancelled. Where it would analyse a photo of over
+// `preview_above_pixels` (0: never) it makes a preview analysis instead
+// (not cached; StudioScene::preview), for a full one to follow.
 std::unique_ptr<StudioScene> load_studio_scene(const std::filesystem::path& scene_path, const AnalysisOptions& options,
-                                               Progress& progress, const std::filesystem::path& analysis_folder = {});
+                                               Progress& progress, const std::filesystem::path& analysis_folder = {},
+                                               int64_t preview_above_pixels = 0);
 
 }  // namespace relight::gui
