@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
@@ -39,9 +40,9 @@ std::vector<EdgeField> edge_pyramid(const Image& photo, int levels) {
 // pixels' centres see different surfaces (or one sees none), the point on
 // the nearer surface where it ends, found to 1/16 pixel by bisection along
 // the two pixels' centres. On the nearer surface: a silhouette is the
-// occluder's edge, and it stays on it when the camera moves. Each row and
-// the next are traced where they are compared, rather than kept for the
-// whole photo.
+// occluder's edge, and it stays on it when the camera moves. Rows are
+// traced a band at a time (each once, and the row after the band), rather
+// than kept for the whole photo.
 std::vector<Vec3> geometry_edges(const Camera& camera, const RayScene& rays, const std::string& scene_file) {
   const int w = camera.width(), h = camera.height();
   const auto trace_row = [&](int y, std::vector<GBufferSample>& row) {
@@ -52,36 +53,39 @@ std::vector<Vec3> geometry_edges(const Camera& camera, const RayScene& rays, con
   };
   std::atomic<bool> any_hit{false};
   std::vector<std::vector<Vec3>> rows(h);
-  tbb::parallel_for(0, h, [&](int y) {
+  constexpr int kBandRows = 16;
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, kBandRows), [&](const tbb::blocked_range<int>& band) {
     std::vector<GBufferSample> row, next;
-    trace_row(y, row);
-    trace_row(y + 1, next);
-    for (int x = 0; x < w; ++x)
-      for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
-        const int nx = x + dx, ny = y + dy;
-        if (nx >= w || ny >= h) continue;
-        const GBufferSample &a = row[size_t(x)], &b = dy ? next[size_t(x)] : row[size_t(nx)];
-        if (a.hit) any_hit = true;
-        if (!a.hit && !b.hit) continue;
-        if (a.hit && b.hit && GBuffer::same_surface(a.surface, b.surface)) continue;
-        const bool a_near = a.hit && (!b.hit || a.surface.distance <= b.surface.distance);
-        const SurfacePoint& near = a_near ? a.surface : b.surface;
-        Vec2 from = Vec2(x + 0.5f, y + 0.5f), to = Vec2(nx + 0.5f, ny + 0.5f);
-        if (!a_near) std::swap(from, to);
-        float lo = 0.0f, hi = 1.0f;  // the near surface is seen at lo, not at hi
-        Vec3 point = near.position;
-        for (int step = 0; step < 4; ++step) {
-          const float t = 0.5f * (lo + hi);
-          const Vec2 p = from + t * (to - from);
-          SurfacePoint s;
-          if (rays.intersect(camera.position(), camera.ray_direction(p.x(), p.y()), s) &&
-              GBuffer::same_surface(near, s))
-            lo = t, point = s.position;
-          else
-            hi = t;
+    trace_row(band.begin(), row);
+    for (int y = band.begin(); y < band.end(); ++y, std::swap(row, next)) {
+      trace_row(y + 1, next);
+      for (int x = 0; x < w; ++x)
+        for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx >= w || ny >= h) continue;
+          const GBufferSample &a = row[size_t(x)], &b = dy ? next[size_t(x)] : row[size_t(nx)];
+          if (a.hit) any_hit = true;
+          if (!a.hit && !b.hit) continue;
+          if (a.hit && b.hit && GBuffer::same_surface(a.surface, b.surface)) continue;
+          const bool a_near = a.hit && (!b.hit || a.surface.distance <= b.surface.distance);
+          const SurfacePoint& near = a_near ? a.surface : b.surface;
+          Vec2 from = Vec2(x + 0.5f, y + 0.5f), to = Vec2(nx + 0.5f, ny + 0.5f);
+          if (!a_near) std::swap(from, to);
+          float lo = 0.0f, hi = 1.0f;  // the near surface is seen at lo, not at hi
+          Vec3 point = near.position;
+          for (int step = 0; step < 4; ++step) {
+            const float t = 0.5f * (lo + hi);
+            const Vec2 p = from + t * (to - from);
+            SurfacePoint s;
+            if (rays.intersect(camera.position(), camera.ray_direction(p.x(), p.y()), s) &&
+                GBuffer::same_surface(near, s))
+              lo = t, point = s.position;
+            else
+              hi = t;
+          }
+          rows[y].push_back(point);
         }
-        rows[y].push_back(point);
-      }
+    }
   });
   if (!any_hit)
     throw InputError(scene_file, "/camera", "the camera sees no geometry: check position, look_at and the mesh");

@@ -105,11 +105,11 @@ struct SparseGrid {
 // crease's other side gets ~0) and q on p's plane (another surface behind
 // or in front gets ~0), as the denoiser weighs its taps.
 float stands_in_for(const SurfacePoint& p, const SurfacePoint& q) {
-  constexpr float kNormalPower = 64.0f, kPlaneSigma = 0.01f;  // the denoiser's defaults (denoise.h)
+  static const DenoiseOptions denoiser;  // its default weights
   const float n_dot = p.normal.dot(q.normal);
   if (n_dot <= 0.0f) return 0.0f;
   const float plane = std::abs(p.geometric_normal.dot(q.position - p.position));
-  return std::exp(kNormalPower * std::log(n_dot) - plane / (kPlaneSigma * p.distance));
+  return std::exp(denoiser.normal_power * std::log(n_dot) - plane / (denoiser.plane_sigma * p.distance));
 }
 
 // Below this, a traced pixel does not count as on the surface it is asked for.
