@@ -44,7 +44,7 @@ struct PoleOnAFloor {
     return m;
   }
   bool on_pole(int x, int y) const {
-    const GBufferSample& s = gbuffer.central(x, y);
+    const GBufferSample s = gbuffer.central(x, y);
     return s.hit && s.surface.prim >= kPoleTriangles[0];
   }
   bool on_floor(int x, int y) const { return gbuffer.one_surface(x, y) && !on_pole(x, y); }

@@ -15,13 +15,13 @@ PhotoAlbedo::PhotoAlbedo(const Camera& camera, const GBuffer& gbuffer, const Ima
   size_t triangles = 0;
   for (int y = 0; y < gbuffer.height(); ++y)
     for (int x = 0; x < gbuffer.width(); ++x)
-      if (const auto& s = gbuffer.central(x, y); s.hit) triangles = std::max<size_t>(triangles, s.surface.prim + 1);
+      if (const auto s = gbuffer.central(x, y); s.hit) triangles = std::max<size_t>(triangles, s.surface.prim + 1);
   for (const TriangleAlbedo& t : unseen_triangles) triangles = std::max<size_t>(triangles, t.triangle + 1);
   std::vector<Vec3> sum(triangles, Vec3::Zero());
   std::vector<int> count(triangles, 0);
   for (int y = 0; y < gbuffer.height(); ++y)
     for (int x = 0; x < gbuffer.width(); ++x)
-      if (const auto& s = gbuffer.central(x, y); s.hit) {
+      if (const auto s = gbuffer.central(x, y); s.hit) {
         sum[s.surface.prim] += clamp01(albedo.at(x, y));
         ++count[s.surface.prim];
       }
@@ -37,7 +37,7 @@ std::vector<uint8_t> triangles_in_view(const GBuffer& gbuffer, size_t triangles)
   std::vector<uint8_t> seen(triangles, 0);
   for (int y = 0; y < gbuffer.height(); ++y)
     for (int x = 0; x < gbuffer.width(); ++x)
-      if (const auto& s = gbuffer.central(x, y); s.hit && s.surface.prim < triangles) seen[s.surface.prim] = 1;
+      if (const auto s = gbuffer.central(x, y); s.hit && s.surface.prim < triangles) seen[s.surface.prim] = 1;
   return seen;
 }
 

@@ -50,7 +50,7 @@ Eigen::AlignedBox3f seen_bounds(const LightingDocument& document) {
   std::array<std::vector<float>, 3> axes;
   for (int y = 0; y < g.height(); ++y)
     for (int x = 0; x < g.width(); ++x)
-      if (const GBufferSample& s = g.central(x, y); s.hit)
+      if (const GBufferSample s = g.central(x, y); s.hit)
         for (int a = 0; a < 3; ++a) axes[size_t(a)].push_back(s.surface.position[a]);
   Eigen::AlignedBox3f box;
   if (!axes[0].empty()) {

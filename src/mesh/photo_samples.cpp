@@ -12,7 +12,7 @@ PhotoSamples photo_samples(const Image& photo, const GBuffer& gbuffer) {
     for (int x = 0; x < s.width; ++x) {
       const size_t i = size_t(y) * s.width + x;
       s.intensity[i] = luminance(photo.pixels[i]);
-      const GBufferSample& g = gbuffer.central(x, y);
+      const GBufferSample g = gbuffer.central(x, y);
       s.triangle[i] = g.hit ? g.surface.prim : PhotoSamples::kNoTriangle;
     }
   return s;

@@ -40,7 +40,7 @@ RelitLayers resampled_layers(const Scene& scene, const GBuffer& photo_gbuffer, c
       Vec3 albedo_sum = Vec3::Zero(), environment_sum = Vec3::Zero();
       int hits = 0;
       for (int k = 0; k < spp; ++k) {
-        const GBufferSample& s = gbuffer.sample(x, y, k);
+        const GBufferSample s = gbuffer.sample(x, y, k);
         if (s.hit) {
           albedo_sum += albedo.at(s.surface);
           ++hits;

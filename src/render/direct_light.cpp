@@ -44,8 +44,8 @@ struct RowRays {
   }
 };
 
-// surface_at(pixel, k): the pixel's k-th surface sample, nullptr where it
-// sees the background. A row's rays go to Embree as packets of neighbouring
+// surface_at(pixel, k): the pixel's k-th surface sample, none where it sees
+// the background. A row's rays go to Embree as packets of neighbouring
 // pixels', traced as soon as one is full.
 template <class SurfaceAt>
 bool trace_direct_light(int width, int height, int samples_per_pixel, const SurfaceAt& surface_at,
@@ -81,7 +81,7 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
         std::optional<Rng> rng;
         if (random) rng.emplace(settings.seed, pixel, settings.pass);
         for (int k = 0; k < samples_per_pixel; ++k) {
-          const SurfacePoint* p = surface_at(pixel, k);
+          const std::optional<SurfacePoint> p = surface_at(pixel, k);
           if (!p) continue;
           if (ratio) row.exact[size_t(x)] += sampler.unshadowed_irradiance(p->position, p->normal);
           for (int j = 0; j < light_samples; ++j) {
@@ -119,8 +119,9 @@ bool trace_direct_light(int width, int height, int samples_per_pixel, const Surf
 
 bool render_direct_light(const PixelSurfaces& surfaces, const RayScene& rays, const Light& light,
                          const DirectLightSettings& settings, Image& out, const std::atomic<bool>* cancel) {
-  const auto surface_at = [&](size_t pixel, int) -> const SurfacePoint* {
-    return surfaces.hit[pixel] ? &surfaces.surface[pixel] : nullptr;
+  const auto surface_at = [&](size_t pixel, int) -> std::optional<SurfacePoint> {
+    if (!surfaces.hit[pixel]) return std::nullopt;
+    return surfaces.surface[pixel];
   };
   return trace_direct_light(surfaces.width, surfaces.height, 1, surface_at, rays, light, settings, out, cancel);
 }
@@ -128,9 +129,12 @@ bool render_direct_light(const PixelSurfaces& surfaces, const RayScene& rays, co
 bool render_direct_light(const GBuffer& gbuffer, const RayScene& rays, const Light& light,
                          const DirectLightSettings& settings, Image& out, const std::atomic<bool>* cancel) {
   const int w = gbuffer.width(), spp = gbuffer.samples_per_pixel();
-  const auto surface_at = [&](size_t pixel, int k) -> const SurfacePoint* {
-    const GBufferSample& s = gbuffer.sample(int(pixel % w), int(pixel / w), k);
-    return s.hit ? &s.surface : nullptr;
+  // The G-buffer gives its samples by value (most are recomputed from their
+  // rays), so they are passed on by value too.
+  const auto surface_at = [&](size_t pixel, int k) -> std::optional<SurfacePoint> {
+    const GBufferSample s = gbuffer.sample(int(pixel % w), int(pixel / w), k);
+    if (!s.hit) return std::nullopt;
+    return s.surface;
   };
   return trace_direct_light(w, gbuffer.height(), spp, surface_at, rays, light, settings, out, cancel);
 }

@@ -30,7 +30,7 @@ PixelEstimate estimate_pixel(const GBuffer& g, int x, int y, int paths_per_pixel
   double lum_sum = 0.0, lum_sq_sum = 0.0;
   int n = 0;
   for (int i = 0; i < paths; ++i) {
-    const GBufferSample& s = samples[size_t(i % spp)];
+    const GBufferSample s = samples[size_t(i % spp)];
     if (!s.hit) continue;
     const Vec3 v = estimate(s.surface, i, paths, rng);
     sum += v;
@@ -93,7 +93,7 @@ struct SparseGrid {
       for (int i = 0; i < width; ++i) {
         const size_t k = size_t(j) * width + i;
         for (int s = -1; s < g.samples_per_pixel() && !surfaces.hit[k]; ++s) {
-          const GBufferSample& sample = s < 0 ? g.central(xs[i], ys[j]) : g.sample(xs[i], ys[j], s);
+          const GBufferSample sample = s < 0 ? g.central(xs[i], ys[j]) : g.sample(xs[i], ys[j], s);
           surfaces.surface[k] = sample.surface;
           surfaces.hit[k] = sample.hit;
         }
@@ -155,7 +155,7 @@ bool interpolate_pixel(const GBuffer& g, const SparseGrid& grid, const Image& tr
   Vec3 sum = Vec3::Zero();
   int n = 0;
   for (int k = 0; k < g.samples_per_pixel(); ++k) {
-    const GBufferSample& s = g.sample(x, y, k);
+    const GBufferSample s = g.sample(x, y, k);
     if (!s.hit) continue;
     const Vec2 pos = g.sample_position(x, y, k);
     Vec3 v;
