@@ -369,6 +369,13 @@ const std::vector<Row>& catalogue() {
        "rig.json", "/lights/0/direction: expected a non-zero direction"},
       {"RigLightPowerNegative", [](SceneFolder& f) { f.rig["lights"][0]["power"] = -300; }, Command::render,
        "rig.json", "/lights/0/power: expected a number greater than 0"},
+      {"RigKeysOutOfOrder",
+       [](SceneFolder& f) { f.rig["lights"][0]["keys"] = json::parse(R"([{"frame": 5, "power": 1}, {"frame": 2, "power": 2}])"); },
+       Command::render, "rig.json", "/lights/0/keys/1/frame: frames must increase from key to key (2 after 5)"},
+      {"FramesWithoutAFrameNumberInTheOutput", [](SceneFolder&) {}, Command::render, "relit.exr",
+       "a frame sequence needs '#' in the output's name", 2, {"--frames", "1-2"}},
+      {"FramesBackwards", [](SceneFolder&) {}, Command::render, "--frames",
+       "expected a frame (12) or a range (1-120), got '3-1'", 2, {"--frames", "3-1"}},
       // where the output goes
       {"AnalysisFolderIsAFile", [](SceneFolder& f) { write_text(f / "analysis", "a file"); }, Command::analyze,
        "analysis", "cannot create the output folder"},

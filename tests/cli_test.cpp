@@ -133,6 +133,39 @@ TEST(Cli, RenderShowsTheRigsNewSkyPastTheGeometry) {
   EXPECT_GT(background, 0);
 }
 
+// An animated rig through `relight render --frames`: one file pair a frame,
+// named by the '#'s, in a folder made for them; frame 3 rendered alone (a
+// farm's chunk) is frame 3 of the whole run, to the bit.
+TEST(Cli, RenderFramesWritesTheSequence) {
+  const fs::path dir = temp_folder("frames");
+  const std::string scene = (kRoom / "scene.json").string();
+  ASSERT_EQ(
+      relight_run({"analyze", scene, "-o", (dir / "analysis").string(), "--spp", "2", "--interreflection", "off"}), 0);
+  relight::test::write_text(dir / "moving.json", R"({"format": "relight-rig/1", "environment_scale": 0.5, "lights": [
+    {"name": "lamp", "type": "point", "position": [-1, -1.2, 2], "power": 250, "radius": 0.05,
+     "keys": [{"frame": 1, "position": [-1, -1.2, 2], "interpolation": "linear"},
+              {"frame": 3, "position": [1, -1.2, 2], "power": 100}]}]})");
+  const auto render = [&](const std::string& frames, const fs::path& out) {
+    return relight_run({"render", scene, "--rig", (dir / "moving.json").string(), "--analysis",
+                        (dir / "analysis").string(), "--frames", frames, "-o", out.string()});
+  };
+  ASSERT_EQ(render("1-3", dir / "all" / "lit.###.exr"), 0);
+  for (const char* f : {"lit.001.exr", "lit.001.png", "lit.002.exr", "lit.003.exr", "lit.003.png"})
+    EXPECT_TRUE(fs::exists(dir / "all" / f)) << f;
+  EXPECT_FALSE(fs::exists(dir / "all" / "lit.004.exr"));
+  ASSERT_EQ(render("3", dir / "alone" / "lit.###.exr"), 0);
+  const relight::Image third = relight::read_image(dir / "all" / "lit.003.exr");
+  EXPECT_EQ(relight::read_image(dir / "alone" / "lit.003.exr").pixels, third.pixels);
+  // The lamp moved 2 m and dimmed: frame 1 is another picture, darker on the right.
+  const relight::Image first = relight::read_image(dir / "all" / "lit.001.exr");
+  double left = 0, right = 0;
+  for (int y = 0; y < first.height; ++y)
+    for (int x = 0; x < first.width; ++x)
+      (x < first.width / 2 ? left : right) += relight::luminance(third.at(x, y)) - relight::luminance(first.at(x, y));
+  EXPECT_GT(right, 0.0);
+  EXPECT_LT(left, 0.0);
+}
+
 TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
   const fs::path dir = temp_folder("renders");
   ASSERT_EQ(relight_run({"analyze", (kRoom / "scene.json").string(), "-o", dir.string(), "--spp", "8", "--save-renders",

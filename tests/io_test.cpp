@@ -593,6 +593,58 @@ TEST_F(RigFile, EnvironmentScaleAsString) {
   EXPECT_MENTIONS(load_error(), rig_path().string(), "/environment_scale", "number");
 }
 
+// ------------------------------------------------------------ an animated rig's keys
+
+TEST_F(RigFile, KeysLoadAndRoundTrip) {
+  rig["lights"][0]["keys"] = json::parse(R"([
+    {"frame": 1, "position": [2, -3, 3], "power": 800},
+    {"frame": 24, "direction": [0, 1, -1], "interpolation": "linear"},
+    {"frame": 48, "color": [1, 0.5, 0.25], "enabled": false, "interpolation": "constant"}
+  ])");
+  write_text(rig_path(), rig.dump(2));
+  const Rig r = load_rig(rig_path());
+  const std::vector<LightKey>& keys = r.lights.at(0).keys;
+  ASSERT_EQ(keys.size(), 3u);
+  EXPECT_EQ(keys[0].frame, 1);
+  EXPECT_EQ(keys[0].interpolation, Interpolation::smooth);
+  EXPECT_EQ(*keys[0].position, Vec3(2, -3, 3));
+  EXPECT_EQ(*keys[0].power, 800.0f);
+  EXPECT_FALSE(keys[0].direction.has_value());
+  EXPECT_NEAR(keys[1].direction->y(), std::sqrt(0.5f), 1e-6f);  // normalised
+  EXPECT_EQ(keys[1].interpolation, Interpolation::linear);
+  EXPECT_EQ(*keys[2].enabled, false);
+  EXPECT_EQ(keys[2].interpolation, Interpolation::constant);
+  EXPECT_TRUE(r.lights.at(1).keys.empty());
+
+  save_rig(dir / "saved.json", r);  // the studio's Save Rig keeps the animation
+  const Rig back = load_rig(dir / "saved.json");
+  ASSERT_EQ(back.lights.at(0).keys.size(), 3u);
+  EXPECT_EQ(back.lights.at(0).keys[1].frame, 24);
+  EXPECT_TRUE(back.lights.at(0).keys[1].direction->isApprox(*keys[1].direction, 1e-6f));
+  EXPECT_EQ(back.lights.at(0).keys[2].interpolation, Interpolation::constant);
+  EXPECT_EQ(*back.lights.at(0).keys[2].color, *keys[2].color);
+}
+
+TEST_F(RigFile, KeysOutOfOrder) {
+  rig["lights"][0]["keys"] = json::parse(R"([{"frame": 10, "power": 1}, {"frame": 5, "power": 2}])");
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/lights/0/keys/1/frame", "5 after 10");
+}
+
+TEST_F(RigFile, KeyFrameNotWhole) {
+  rig["lights"][1]["keys"] = json::parse(R"([{"frame": 1.5, "power": 1}])");
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/lights/1/keys/0/frame", "whole");
+}
+
+TEST_F(RigFile, KeyOfAValueTheLightHasNot) {
+  rig["lights"][1]["keys"] = json::parse(R"([{"frame": 1, "direction": [0, 0, -1]}])");
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/lights/1/keys/0/direction", "point light has no direction");
+}
+
+TEST_F(RigFile, UnknownInterpolation) {
+  rig["lights"][1]["keys"] = json::parse(R"([{"frame": 1, "power": 3, "interpolation": "bezier"}])");
+  EXPECT_MENTIONS(load_error(), rig_path().string(), "/lights/1/keys/0/interpolation", "bezier", "smooth");
+}
+
 // ------------------------------------------------------------ a rig's new environment
 
 TEST_F(RigFile, WithoutEnvironmentTheSceneKeepsItsOwn) {

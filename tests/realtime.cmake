@@ -5,6 +5,11 @@ add_executable(session_test session_test.cpp)
 target_link_libraries(session_test PRIVATE relight_relight relight_example GTest::gtest_main)
 gtest_discover_tests(session_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
 
+# An animated rig's frames (relight/frame_sequence.h).
+add_executable(frame_sequence_test frame_sequence_test.cpp)
+target_link_libraries(frame_sequence_test PRIVATE relight_relight relight_example GTest::gtest_main)
+gtest_discover_tests(frame_sequence_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+
 add_executable(realtime_test realtime_test.cpp)
 target_link_libraries(realtime_test PRIVATE relight_realtime relight_io GTest::gtest_main)
 target_compile_definitions(realtime_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

@@ -11,37 +11,15 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "analysed_room.h"
 #include "io/image_io.h"
 #include "render/render_illumination.h"
-#include "room_scene.h"
 
 using namespace relight;
 
 namespace {
 
-// A small analysed room (its photo made by the path tracer with the known albedo).
-const AnalysedScene& room() {
-  static const std::unique_ptr<AnalysedScene> r = [] {
-    Scene scene = example::room_scene(120, 90);
-    scene.path = "room";
-    {
-      const RayScene rays(scene.mesh);
-      Lighting lighting;
-      lighting.lights = scene.lights;
-      lighting.environment = Environment::constant(scene.background);
-      const example::RoomAlbedo albedo = example::room_albedo();
-      const Integrator integrator(rays, lighting, &albedo);
-      const GBuffer photo_samples(scene.camera, rays, 4, 5, "room");
-      scene.photo = synthesize_photo(photo_samples, scene.camera, integrator, albedo, 4, 3, Progress::silent());
-    }
-    AnalysisOptions options;
-    options.strategy = Strategy::lights;
-    options.paths_per_pixel = 4;
-    options.interreflection = false;
-    return AnalysedScene::analyse(std::move(scene), options, Progress::silent());
-  }();
-  return *r;
-}
+const AnalysedScene& room() { return test::analysed_room(); }
 
 // Cheap refinement, so that the tests converge in a second or two.
 SessionOptions quick_options() {

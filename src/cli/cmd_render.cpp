@@ -8,9 +8,12 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/frame_files.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
+#include "relight/frame_sequence.h"
 #include "relight/render_rig.h"
+#include "scene/animation.h"
 
 namespace relight::cli {
 
@@ -19,17 +22,91 @@ namespace fs = std::filesystem;
 namespace {
 
 struct RenderArgs {
-  std::string scene, rig, out, analysis;
+  std::string scene, rig, out, analysis, frames;
   AnalysisOptions options;
   const CLI::Option* spp = nullptr;  // given or not
   float exposure = 0.0f;
 };
 
+// The EXR and the PNG beside it, appearing together.
+void write_relit(fs::path out, const Image& image, float exposure) {
+  if (out.extension() != ".exr") out += ".exr";
+  fs::path png = out;
+  png.replace_extension(".png");
+  OutputBatch pair;
+  write_exr(out, image);
+  write_png(png, image, exposure);
+  pair.commit();
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The frames asked for, checked against the output name and the rig.
+std::optional<FrameRange> frames_to_render(const RenderArgs& args, const Rig& rig) {
+  const std::optional<FrameRange> keyed = keyed_frames(rig);
+  if (args.frames.empty()) {
+    if (has_frame_digits(args.out))
+      throw InputError(
+          args.out, "",
+          "the output names a frame sequence ('#'): give the frames with --frames" +
+              (keyed ? " (the rig's keys span " + std::to_string(keyed->first) + "-" + std::to_string(keyed->last) + ")"
+                     : std::string()));
+    if (keyed)
+      spdlog::warn(
+          "{}: the rig is animated (keys on frames {}-{}); rendering its lights as they stand outside the "
+          "animation: --frames renders the frames",
+          args.rig, keyed->first, keyed->last);
+    return std::nullopt;
+  }
+  const std::optional<FrameRange> frames = parse_frame_range(args.frames);
+  if (!frames) throw InputError("--frames", "", "expected a frame (12) or a range (1-120), got '" + args.frames + "'");
+  if (!has_frame_digits(args.out))
+    throw InputError(args.out, "",
+                     "a frame sequence needs '#' in the output's name for the frame number "
+                     "(relit.####.exr)");
+  if (!keyed) spdlog::warn("{}: the rig has no keys: every frame is the same", args.rig);
+  return frames;
+}
+
+void render_frames(const RenderArgs& args, const AnalysedScene& analysed, const Rig& rig, FrameRange frames,
+                   const RenderOptions& options, Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  FrameSequence sequence(analysed, options);
+  const int count = frames.last - frames.first + 1;
+  for (int frame = frames.first; frame <= frames.last; ++frame) {
+    const auto frame_start = std::chrono::steady_clock::now();
+    const FrameSequence::Stats before = sequence.stats();
+    const Image image = sequence.render(rig, frame, progress);
+    const fs::path out = frame_file(args.out, frame);
+    write_relit(out, image, args.exposure);
+    const FrameSequence::Stats& after = sequence.stats();
+    const int done = frame - frames.first + 1;
+    const double elapsed = seconds_since(start);
+    std::printf("frame %d (%d of %d): %d light(s) rendered, %d reused, %.1f s; %s written; about %.0f s left\n", frame,
+                done, count, after.light_renders - before.light_renders, after.light_reuses - before.light_reuses,
+                seconds_since(frame_start), out.c_str(), elapsed / done * (count - done));
+    std::fflush(stdout);
+  }
+  const FrameSequence::Stats& stats = sequence.stats();
+  std::printf("%d frames written to %s in %.1f s (%d light renders, %d reused from the frame before)\n", count,
+              args.out.c_str(), seconds_since(start), stats.light_renders, stats.light_reuses);
+}
+
 void run_render(const RenderArgs& args, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   const Rig rig = load_rig(args.rig);
-  fs::path out(args.out);
-  if (out.extension() != ".exr") out += ".exr";
+  const std::optional<FrameRange> frames = frames_to_render(args, rig);
+  // A sequence's folder is made, as Blender makes its; a still's must exist.
+  // Either way before the long work.
+  const fs::path folder = fs::path(args.out).parent_path();
+  if (std::error_code error; frames && !folder.empty() && !fs::exists(folder)) {
+    if (!fs::create_directories(folder, error))
+      throw InputError(args.out, "", "cannot make the output folder: " + error.message());
+    spdlog::info("made the folder {} for the frames", folder.string());
+  }
+  check_output_folder(args.out);
   const std::unique_ptr<AnalysedScene> analysed =
       load_analysed_scene(args.scene, args.analysis, args.options, progress);
   RenderOptions render_options;
@@ -38,15 +115,14 @@ void run_render(const RenderArgs& args, Progress& progress) {
   render_options.paths_per_pixel =
       args.spp->count() ? args.options.paths_per_pixel : analysed->analysis().options.paths_per_pixel;
   render_options.max_bounces = args.options.max_bounces;
+  if (frames) return render_frames(args, *analysed, rig, *frames, render_options, progress);
   const Image image = render_rig(*analysed, rig, render_options, progress);
+  fs::path out(args.out);
+  if (out.extension() != ".exr") out += ".exr";
+  write_relit(out, image, args.exposure);
   fs::path png = out;
   png.replace_extension(".png");
-  OutputBatch pair;  // the EXR and the PNG appear together
-  write_exr(out, image);
-  write_png(png, image, args.exposure);
-  pair.commit();
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("re-lit image written to %s and %s in %.1f s\n", out.c_str(), png.c_str(), secs);
+  std::printf("re-lit image written to %s and %s in %.1f s\n", out.c_str(), png.c_str(), seconds_since(start));
 }
 
 }  // namespace
@@ -56,7 +132,13 @@ void add_render_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand("render", "render the photo under a new lighting design (rig.json)");
   cmd->add_option("scene", args->scene, "scene.json")->required();
   cmd->add_option("--rig", args->rig, "rig.json: the new lights")->required();
-  cmd->add_option("-o,--out", args->out, "output EXR; a tone-mapped PNG is written beside it")->required();
+  cmd->add_option("-o,--out", args->out,
+                  "output EXR; a tone-mapped PNG is written beside it. With --frames, '#'s stand for the frame "
+                  "number (relit.####.exr)")
+      ->required();
+  cmd->add_option("--frames", args->frames,
+                  "render the frames of an animated rig: a frame (12) or a range (1-120); each light is rendered "
+                  "only when it moved since the frame before");
   cmd->add_option("--analysis", args->analysis,
                   "an analysis folder from 'relight analyze' to reuse (else the scene is analysed first)");
   cmd->add_option("--exposure", args->exposure, "exposure of the PNG in stops")->capture_default_str();
@@ -70,7 +152,9 @@ void add_render_command(CLI::App& app, Action& action) {
       {{"relight render scene.json --rig rigs/evening.json --analysis analysis -o evening.exr",
         "evening.exr and evening.png, reusing the analysis folder"},
        {"relight render scene.json --rig rig.json -o relit.exr --exposure 1",
-        "analyse, render, and a PNG one stop brighter"}}));
+        "analyse, render, and a PNG one stop brighter"},
+       {"relight render scene.json --rig dusk.json --analysis analysis --frames 1-120 -o out/dusk.####.exr",
+        "an animated rig's frames: out/dusk.0001.exr ... out/dusk.0120.exr, each with its PNG"}}));
   run_when_parsed(*cmd, action, args, run_render);
 }
 

@@ -341,10 +341,15 @@ fs::path OutputBatch::staged(const fs::path& target) const {
   throw std::logic_error(target.string() + " is not written in this batch");
 }
 
+void check_output_folder(const fs::path& target) {
+  std::error_code ec;
+  if (!fs::is_directory(folder_of(target), ec))
+    throw InputError(target.string(), "", "the output folder does not exist");
+}
+
 void write_atomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
   const fs::path folder = folder_of(target);
-  std::error_code ec;
-  if (!fs::is_directory(folder, ec)) throw InputError(target.string(), "", "the output folder does not exist");
+  check_output_folder(target);
   const Previous previous = inspect_target(target);
   if (t_batch) t_batch->lock_folder(folder);
   Staged staged{target, create_temporary(target)};

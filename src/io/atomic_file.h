@@ -17,6 +17,10 @@
 
 namespace relight {
 
+// Throws InputError, naming `target`, where its folder does not exist: to
+// check an output before long work rather than after it.
+void check_output_folder(const std::filesystem::path& target);
+
 // Calls write(temp_path) with a fresh temporary path beside `target` (same
 // extension, so format-by-extension writers work), then renames it onto
 // `target`, keeping the mode (and, where allowed, the owner) of the file it

@@ -38,6 +38,54 @@ LightType parse_light_type(const JsonReader& r, const json& v, const std::string
   r.fail(ptr, "expected \"point\", \"spot\", \"area\" or \"directional\", found \"" + t + "\"");
 }
 
+Interpolation parse_interpolation(const JsonReader& r, const json& v, const std::string& ptr) {
+  const std::string t = r.string(v, ptr);
+  if (t == "constant") return Interpolation::constant;
+  if (t == "linear") return Interpolation::linear;
+  if (t == "smooth") return Interpolation::smooth;
+  r.fail(ptr, "expected \"constant\", \"linear\" or \"smooth\", found \"" + t + "\"");
+}
+
+// An animated light's keys (docs/formats.md, "Animated rigs"): the values a
+// light of `type` has, each optional, at whole frames in increasing order.
+std::vector<LightKey> parse_light_keys(const JsonReader& r, const json& v, const std::string& ptr, LightType type) {
+  if (!v.is_array() || v.empty()) r.fail(ptr, "expected an array of keys ({\"frame\": 1, ...})");
+  const bool sun = type == LightType::directional;
+  const char* power_key = sun ? "irradiance" : "power";
+  std::vector<LightKey> keys;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const json& k = v[i];
+    const std::string at = json_child(ptr, i);
+    r.expect_object(k, at);
+    auto member = [&](const char* name) { return json_child(at, name); };
+    LightKey key;
+    const float frame = r.number(r.required(k, at, "frame"), member("frame"), -1.0e6f, 1.0e6f);
+    if (frame != std::floor(frame)) r.fail(member("frame"), "expected a whole frame number");
+    key.frame = int(frame);
+    if (!keys.empty() && key.frame <= keys.back().frame)
+      r.fail(member("frame"), "frames must increase from key to key (" + std::to_string(key.frame) + " after " +
+                                  std::to_string(keys.back().frame) + ")");
+    if (auto* m = r.optional(k, "interpolation"))
+      key.interpolation = parse_interpolation(r, *m, member("interpolation"));
+    if (auto* m = r.optional(k, "position")) {
+      if (sun) r.fail(member("position"), "a directional light has no position (key its direction)");
+      key.position = r.vec3(*m, member("position"));
+    }
+    if (auto* m = r.optional(k, "direction")) {
+      if (type == LightType::point) r.fail(member("direction"), "a point light has no direction");
+      key.direction = r.direction(*m, member("direction"));
+    }
+    if (auto* m = r.optional(k, "color")) key.color = r.color(*m, member("color"));
+    if (auto* m = r.optional(k, power_key)) key.power = r.number(*m, member(power_key), 0.0f, kMaxPower);
+    if (auto* m = r.optional(k, "enabled")) key.enabled = r.boolean(*m, member("enabled"));
+    r.warn_unknown_keys(k, at, {"frame", "interpolation", "position", "direction", "color", power_key, "enabled"});
+    if (!key.position && !key.direction && !key.color && !key.power && !key.enabled)
+      spdlog::warn("{}: {}: the key sets nothing (position, direction, color, {} or enabled)", r.file(), at, power_key);
+    keys.push_back(key);
+  }
+  return keys;
+}
+
 Light parse_light(const JsonReader& r, const json& v, const std::string& ptr, size_t index) {
   r.expect_object(v, ptr);
   Light light;
@@ -62,10 +110,11 @@ Light parse_light(const JsonReader& r, const json& v, const std::string& ptr, si
         light.spot_angle_deg = r.number(r.required(v, ptr, "spot_angle_deg"), key("spot_angle_deg"), 0.0f, 180.0f);
         if (light.spot_angle_deg <= 0.0f) r.fail(key("spot_angle_deg"), "expected a cone angle in (0, 180]");
         if (auto* b = r.optional(v, "blend")) light.blend = r.number(*b, key("blend"), 0.0f, 1.0f);
-        r.warn_unknown_keys(v, ptr, {"type", "name", "color", "enabled", "position", "power", "radius", "direction",
-                                     "spot_angle_deg", "blend"});
+        r.warn_unknown_keys(v, ptr,
+                            {"type", "name", "color", "enabled", "position", "power", "radius", "direction",
+                             "spot_angle_deg", "blend", "keys"});
       } else {
-        r.warn_unknown_keys(v, ptr, {"type", "name", "color", "enabled", "position", "power", "radius"});
+        r.warn_unknown_keys(v, ptr, {"type", "name", "color", "enabled", "position", "power", "radius", "keys"});
       }
       break;
     case LightType::area: {
@@ -78,7 +127,8 @@ Light parse_light(const JsonReader& r, const json& v, const std::string& ptr, si
       light.size = Vec2(r.number_above(size[0], key("size") + "/0", 0.0f), r.number_above(size[1], key("size") + "/1", 0.0f));
       light.power = r.number_above(r.required(v, ptr, "power"), key("power"), 0.0f);
       if (light.power > kMaxPower) r.fail(key("power"), "power is implausibly large (over 1e9 W)");
-      r.warn_unknown_keys(v, ptr, {"type", "name", "color", "enabled", "position", "direction", "up", "size", "power"});
+      r.warn_unknown_keys(v, ptr,
+                          {"type", "name", "color", "enabled", "position", "direction", "up", "size", "power", "keys"});
       break;
     }
     case LightType::directional:
@@ -86,9 +136,10 @@ Light parse_light(const JsonReader& r, const json& v, const std::string& ptr, si
       light.irradiance = r.number_above(r.required(v, ptr, "irradiance"), key("irradiance"), 0.0f);
       if (light.irradiance > kMaxPower) r.fail(key("irradiance"), "irradiance is implausibly large");
       if (auto* a = r.optional(v, "angle_deg")) light.angle_deg = r.number(*a, key("angle_deg"), 0.0f, 180.0f);
-      r.warn_unknown_keys(v, ptr, {"type", "name", "color", "enabled", "direction", "irradiance", "angle_deg"});
+      r.warn_unknown_keys(v, ptr, {"type", "name", "color", "enabled", "direction", "irradiance", "angle_deg", "keys"});
       break;
   }
+  if (auto* keys = r.optional(v, "keys")) light.keys = parse_light_keys(r, *keys, key("keys"), light.type);
   return light;
 }
 
@@ -249,6 +300,22 @@ json mapped_image_to_json(const Probe& p, const fs::path& folder) {
           {"up", v3(p.up)}};
 }
 
+json light_keys_to_json(const Light& l) {
+  json keys = json::array();
+  for (const LightKey& key : l.keys) {
+    json k;
+    k["frame"] = key.frame;
+    if (key.interpolation != Interpolation::smooth) k["interpolation"] = to_string(key.interpolation);
+    if (key.position) k["position"] = v3(*key.position);
+    if (key.direction) k["direction"] = v3(*key.direction);
+    if (key.color) k["color"] = v3(*key.color);
+    if (key.power) k[l.type == LightType::directional ? "irradiance" : "power"] = *key.power;
+    if (key.enabled) k["enabled"] = *key.enabled;
+    keys.push_back(std::move(k));
+  }
+  return keys;
+}
+
 json light_to_json(const Light& l) {
   json j;
   j["name"] = l.name;
@@ -280,6 +347,7 @@ json light_to_json(const Light& l) {
       if (l.angle_deg > 0.0f) j["angle_deg"] = l.angle_deg;
       break;
   }
+  if (!l.keys.empty()) j["keys"] = light_keys_to_json(l);
   return j;
 }
 

@@ -32,14 +32,6 @@ namespace {
 // How far a light's cached direct light has got, for the geometry it was rendered for.
 enum class Stage { none, interactive, antialiased, soft };
 
-// Whether two versions of a light differ in what their unit-emission images
-// depend on: everything but colour, power (irradiance) and enabled.
-bool same_geometry(const Light& a, const Light& b) {
-  return a.type == b.type && a.position == b.position && a.direction == b.direction && a.up == b.up &&
-         a.radius == b.radius && a.spot_angle_deg == b.spot_angle_deg && a.blend == b.blend && a.size == b.size &&
-         a.angle_deg == b.angle_deg;
-}
-
 // Whether setting `b` over `a` changes the picture (the name does not).
 bool same_picture(const Light& a, const Light& b) {
   return same_geometry(a, b) && a.color == b.color && a.enabled == b.enabled && a.power == b.power &&

@@ -9,6 +9,24 @@
 
 namespace relight {
 
+bool same_geometry(const Light& a, const Light& b) {
+  return a.type == b.type && a.position == b.position && a.direction == b.direction && a.up == b.up &&
+         a.radius == b.radius && a.spot_angle_deg == b.spot_angle_deg && a.blend == b.blend && a.size == b.size &&
+         a.angle_deg == b.angle_deg;
+}
+
+const char* to_string(Interpolation interpolation) {
+  switch (interpolation) {
+    case Interpolation::constant:
+      return "constant";
+    case Interpolation::linear:
+      return "linear";
+    case Interpolation::smooth:
+      return "smooth";
+  }
+  return "smooth";
+}
+
 const char* to_string(LightType type) {
   switch (type) {
     case LightType::point: return "point";

@@ -3,7 +3,9 @@
 // delivers to a surface point.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/vec.h"
 
@@ -12,6 +14,21 @@ namespace relight {
 enum class LightType { point, spot, area, directional };
 
 const char* to_string(LightType type);
+
+// How a keyed value goes from one key to the next (animation.h).
+enum class Interpolation { constant, linear, smooth };
+const char* to_string(Interpolation interpolation);
+
+// A light's values at one frame of an animated rig: those it sets are keyed
+// there, the others are keyed at other frames or not at all (FORMAT.md
+// extension, docs/formats.md "Animated rigs").
+struct LightKey {
+  int frame = 0;
+  Interpolation interpolation = Interpolation::smooth;  // towards the next key
+  std::optional<Vec3> position, direction, color;
+  std::optional<float> power;  // W, or W/m^2 for a sun (its irradiance)
+  std::optional<bool> enabled;
+};
 
 struct Light {
   LightType type = LightType::point;
@@ -28,10 +45,17 @@ struct Light {
   float blend = 0.0f;
   Vec2 size = Vec2(1, 1);           // m (area)
   float angle_deg = 0.0f;           // angular diameter (directional)
+  // An animated rig's keys, by frame; none: the light holds still. The
+  // values above are the light's outside a frame sequence (relight studio).
+  std::vector<LightKey> keys;
 
   // The light's emission scale: color x power (or x irradiance).
   Vec3 emission() const { return color * (type == LightType::directional ? irradiance : power); }
 };
+
+// Whether two versions of a light differ in what their unit-emission images
+// depend on: everything but colour, power (irradiance), enabled and name.
+bool same_geometry(const Light& a, const Light& b);
 
 // An area light's unit sides: w along direction x up, h = w x direction.
 struct AreaLightSides {

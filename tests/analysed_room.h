@@ -1,0 +1,37 @@
+// The example room, small, its photo made by the path tracer with the known
+// albedo and analysed with the scene's own lights: a quick scene for the
+// relighting engines' tests (session_test, frame_sequence_test).
+#pragma once
+
+#include <memory>
+
+#include "analysis/analysed_scene.h"
+#include "render/render_illumination.h"
+#include "room_scene.h"
+
+namespace relight::test {
+
+inline const AnalysedScene& analysed_room() {
+  static const std::unique_ptr<AnalysedScene> r = [] {
+    Scene scene = example::room_scene(120, 90);
+    scene.path = "room";
+    {
+      const RayScene rays(scene.mesh);
+      Lighting lighting;
+      lighting.lights = scene.lights;
+      lighting.environment = Environment::constant(scene.background);
+      const example::RoomAlbedo albedo = example::room_albedo();
+      const Integrator integrator(rays, lighting, &albedo);
+      const GBuffer photo_samples(scene.camera, rays, 4, 5, "room");
+      scene.photo = synthesize_photo(photo_samples, scene.camera, integrator, albedo, 4, 3, Progress::silent());
+    }
+    AnalysisOptions options;
+    options.strategy = Strategy::lights;
+    options.paths_per_pixel = 4;
+    options.interreflection = false;
+    return AnalysedScene::analyse(std::move(scene), options, Progress::silent());
+  }();
+  return *r;
+}
+
+}  // namespace relight::test
