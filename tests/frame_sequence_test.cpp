@@ -62,9 +62,9 @@ Difference difference(const Image& a, const Image& b) {
 // (render_rig against itself with another seed differs as much).
 TEST(FrameSequence, AFrameIsTheStillRenderOfTheRigAtThatFrame) {
   const Rig rig = animated_rig();
-  FrameSequence sequence(room(), options());
+  FrameSequence sequence(room(), rig, options());
   for (const int frame : {1, 2}) {
-    const Image image = sequence.render(rig, frame, Progress::silent());
+    const Image image = sequence.render(frame, Progress::silent());
     const Image still = render_rig(room(), rig_at_frame(rig, frame), options(), Progress::silent());
     const Difference d = difference(image, still);
     EXPECT_LT(d.mean, 0.01) << "frame " << frame;
@@ -72,40 +72,53 @@ TEST(FrameSequence, AFrameIsTheStillRenderOfTheRigAtThatFrame) {
   }
   // Against the still render of another frame (the lamp 20 cm away, the
   // spot dimmed): not the same.
-  EXPECT_GT(difference(sequence.render(rig, 2, Progress::silent()),
+  EXPECT_GT(difference(sequence.render(2, Progress::silent()),
                        render_rig(room(), rig_at_frame(rig, 1), options(), Progress::silent()))
                 .rms,
             0.1);
 }
 
 TEST(FrameSequence, OnlyTheLightsThatMovedAreRenderedAgain) {
-  FrameSequence sequence(room(), options());
-  const Rig rig = animated_rig();
-  sequence.render(rig, 1, Progress::silent());
+  Rig rig = animated_rig();
+  Light still = rig.lights[0];  // a third light, without keys: in the still part
+  still.keys.clear();
+  rig.lights.push_back(still);
+  FrameSequence sequence(room(), rig, options());
+  sequence.render(1, Progress::silent());
+  EXPECT_EQ(sequence.stats().still_renders, 1);
   EXPECT_EQ(sequence.stats().light_renders, 2);
-  EXPECT_EQ(sequence.stats().environment_renders, 1);
-  sequence.render(rig, 2, Progress::silent());  // the lamp moved; the spot dimmed and recoloured
+  sequence.render(2, Progress::silent());  // the lamp moved; the spot dimmed and recoloured
   EXPECT_EQ(sequence.stats().light_renders, 3);
   EXPECT_EQ(sequence.stats().light_reuses, 1);
-  sequence.render(rig, 3, Progress::silent());  // the lamp moved; the spot off
+  sequence.render(3, Progress::silent());  // the lamp moved; the spot off
   EXPECT_EQ(sequence.stats().light_renders, 4);
-  sequence.render(rig, 4, Progress::silent());  // the lamp still; the spot on again
-  sequence.render(rig, 5, Progress::silent());
+  sequence.render(4, Progress::silent());  // the lamp still; the spot on again
+  sequence.render(5, Progress::silent());
   EXPECT_EQ(sequence.stats().light_renders, 4);
   EXPECT_EQ(sequence.stats().light_reuses, 1 + 2 + 2);
-  EXPECT_EQ(sequence.stats().environment_renders, 1);
+  EXPECT_EQ(sequence.stats().still_renders, 1);
+}
+
+// Without keys a frame is one render: the still render itself, to the bit.
+TEST(FrameSequence, ARigWithoutKeysIsTheStillRender) {
+  const Rig rig = example::evening_rig();
+  FrameSequence sequence(room(), rig, options());
+  EXPECT_EQ(sequence.render(7, Progress::silent()).pixels,
+            render_rig(room(), rig, options(), Progress::silent()).pixels);
+  EXPECT_EQ(sequence.stats().still_renders, 1);
+  EXPECT_EQ(sequence.stats().light_renders, 0);
 }
 
 // The farm's property: frame 3 alone, in a sequence of its own, is frame 3
 // after frames 1 and 2, to the bit.
 TEST(FrameSequence, AFrameIsTheSameWhateverWasRenderedBefore) {
   const Rig rig = animated_rig();
-  FrameSequence all(room(), options());
-  all.render(rig, 1, Progress::silent());
-  all.render(rig, 2, Progress::silent());
-  const Image after = all.render(rig, 3, Progress::silent());
-  FrameSequence alone(room(), options());
-  const Image by_itself = alone.render(rig, 3, Progress::silent());
+  FrameSequence all(room(), rig, options());
+  all.render(1, Progress::silent());
+  all.render(2, Progress::silent());
+  const Image after = all.render(3, Progress::silent());
+  FrameSequence alone(room(), rig, options());
+  const Image by_itself = alone.render(3, Progress::silent());
   ASSERT_EQ(after.size(), by_itself.size());
   for (size_t i = 0; i < after.size(); ++i) ASSERT_EQ(after.pixels[i], by_itself.pixels[i]) << "pixel " << i;
 }

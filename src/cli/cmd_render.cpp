@@ -73,25 +73,28 @@ std::optional<FrameRange> frames_to_render(const RenderArgs& args, const Rig& ri
 void render_frames(const RenderArgs& args, const AnalysedScene& analysed, const Rig& rig, FrameRange frames,
                    const RenderOptions& options, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  FrameSequence sequence(analysed, options);
+  FrameSequence sequence(analysed, rig, options);
   const int count = frames.last - frames.first + 1;
+  double first_frame = 0.0;
   for (int frame = frames.first; frame <= frames.last; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
     const FrameSequence::Stats before = sequence.stats();
-    const Image image = sequence.render(rig, frame, progress);
+    const Image image = sequence.render(frame, progress);
     const fs::path out = frame_file(args.out, frame);
     write_relit(out, image, args.exposure);
     const FrameSequence::Stats& after = sequence.stats();
     const int done = frame - frames.first + 1;
-    const double elapsed = seconds_since(start);
+    // The first frame renders the still part too: the time left goes by the others'.
+    if (done == 1) first_frame = seconds_since(frame_start);
+    const double per_frame = done > 1 ? (seconds_since(start) - first_frame) / (done - 1) : first_frame;
     std::printf("frame %d (%d of %d): %d light(s) rendered, %d reused, %.1f s; %s written; about %.0f s left\n", frame,
                 done, count, after.light_renders - before.light_renders, after.light_reuses - before.light_reuses,
-                seconds_since(frame_start), out.c_str(), elapsed / done * (count - done));
+                seconds_since(frame_start), out.c_str(), per_frame * (count - done));
     std::fflush(stdout);
   }
   const FrameSequence::Stats& stats = sequence.stats();
-  std::printf("%d frames written to %s in %.1f s (%d light renders, %d reused from the frame before)\n", count,
-              args.out.c_str(), seconds_since(start), stats.light_renders, stats.light_reuses);
+  std::printf("%d frames written to %s in %.1f s (%d renders of keyed lights, %d reused from the frame before)\n",
+              count, args.out.c_str(), seconds_since(start), stats.light_renders, stats.light_reuses);
 }
 
 void run_render(const RenderArgs& args, Progress& progress) {

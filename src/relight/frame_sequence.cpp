@@ -12,11 +12,6 @@ namespace relight {
 
 namespace {
 
-bool same_environment(const std::optional<RigEnvironment>& a, const std::optional<RigEnvironment>& b) {
-  if (a.has_value() != b.has_value()) return false;
-  return !a || (a->image == b->image && a->color == b->color);
-}
-
 // out += weight x layer, pixel by pixel.
 void accumulate(Image& out, const Image& layer, const Vec3& weight) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
@@ -24,68 +19,73 @@ void accumulate(Image& out, const Image& layer, const Vec3& weight) {
   });
 }
 
+bool lit(const Light& light) { return light.enabled && !light.emission().isZero(); }
+
 }  // namespace
 
-FrameSequence::FrameSequence(const AnalysedScene& analysed, const RenderOptions& options)
+FrameSequence::FrameSequence(const AnalysedScene& analysed, const Rig& rig, const RenderOptions& options)
     : analysed_(analysed),
+      rig_(rig),
       options_(options),
+      moving_options_(options),
       illumination_(analysed),
-      photo_layers_(photo_layers(analysed.scene(), analysed.analysis())) {}
+      photo_layers_(photo_layers(analysed.scene(), analysed.analysis())) {
+  const Camera& camera = analysed.scene().camera;
+  const int analysis_stride = analysed.analysis().options.indirect_stride;
+  const int still_stride = options.indirect_stride > 0 ? options.indirect_stride
+                           : analysis_stride > 0       ? analysis_stride
+                                                       : sparse_indirect_stride(camera.width(), camera.height());
+  moving_options_.indirect_stride = 2 * still_stride;
+}
 
-FrameSequence::LightLayer* FrameSequence::kept_layer(const Light& light) {
+FrameSequence::LightLayer* FrameSequence::kept_layer(const Light& light, bool moving) {
   for (LightLayer& layer : lights_)
-    if (layer.last_used != calls_ && same_geometry(layer.light, light)) {
+    if (layer.last_used != calls_ && same_geometry(layer.light, light) && layer.moving == moving) {
       layer.last_used = calls_;
       return &layer;
     }
   return nullptr;
 }
 
-const IlluminationImages& FrameSequence::light_layer(const Light& light, Progress& progress) {
-  if (LightLayer* kept = kept_layer(light)) {
+const IlluminationImages& FrameSequence::light_layer(const Light& light, bool moving, Progress& progress) {
+  if (LightLayer* kept = kept_layer(light, moving)) {
     ++stats_.light_reuses;
     return kept->images;
   }
   Lighting lighting;
   lighting.lights = {unit_light(light)};
-  lighting.lights.front().keys.clear();
-  IlluminationImages images = illumination_.render(analysed_.gbuffer(), analysed_.scene().camera, lighting, options_,
-                                                   progress, "light " + light.name);
+  IlluminationImages images =
+      illumination_.render(analysed_.gbuffer(), analysed_.scene().camera, lighting, moving ? moving_options_ : options_,
+                           progress, "light " + light.name);
   ++stats_.light_renders;
-  lights_.push_back({lighting.lights.front(), std::move(images), calls_});
+  lights_.push_back({lighting.lights.front(), moving, std::move(images), calls_});
   return lights_.back().images;
 }
 
-const IlluminationImages& FrameSequence::environment_layer(const std::optional<RigEnvironment>& environment,
-                                                           Progress& progress) {
-  if (!environment_ || !same_environment(environment_for_, environment)) {
-    Lighting lighting;
-    lighting.environment = illumination_.environment(environment);
-    environment_ = std::make_unique<IlluminationImages>(illumination_.render(
-        analysed_.gbuffer(), analysed_.scene().camera, lighting, options_, progress, "environment"));
-    environment_for_ = environment;
-    ++stats_.environment_renders;
+const IlluminationImages& FrameSequence::still_layer(Progress& progress) {
+  if (!still_) {
+    Rig still = rig_;
+    std::erase_if(still.lights, [](const Light& l) { return !l.keys.empty(); });
+    still_ = std::make_unique<IlluminationImages>(
+        illumination_.render(analysed_.gbuffer(), analysed_.scene().camera, illumination_.rig_lighting(still), options_,
+                             progress, "the lights without keys and the environment"));
+    ++stats_.still_renders;
   }
-  return *environment_;
+  return *still_;
 }
 
-Image FrameSequence::render(const Rig& animated, int frame, Progress& progress) {
+Image FrameSequence::render(int frame, Progress& progress) {
   ++calls_;
-  const Rig rig = rig_at_frame(animated, frame);
-  const Camera& camera = analysed_.scene().camera;
-  IlluminationImages light{Image(camera.width(), camera.height()), Image(camera.width(), camera.height())};
-  if (rig.environment_scale > 0.0f) {
-    const IlluminationImages& environment = environment_layer(rig.environment, progress);
-    accumulate(light.surface, environment.surface, Vec3::Constant(rig.environment_scale));
-    accumulate(light.background, environment.background, Vec3::Constant(rig.environment_scale));
-  }
+  const Rig rig = rig_at_frame(rig_, frame);
+  IlluminationImages light = still_layer(progress);
   // A layer serves one light a frame: two lights in one place (a pair of
   // bulbs) take one each. A light switched off keeps its layer for when it
   // comes back on.
-  for (const Light& l : rig.lights)
-    if (l.enabled && !l.emission().isZero()) accumulate(light.surface, light_layer(l, progress).surface, l.emission());
-  for (const Light& l : rig.lights)
-    if (!l.enabled || l.emission().isZero()) kept_layer(l);
+  for (size_t i = 0; i < rig.lights.size(); ++i)
+    if (const Light& l = rig.lights[i]; !rig_.lights[i].keys.empty() && lit(l))
+      accumulate(light.surface, light_layer(l, moves(rig_.lights[i]), progress).surface, l.emission());
+  for (size_t i = 0; i < rig.lights.size(); ++i)
+    if (!rig_.lights[i].keys.empty() && !lit(rig.lights[i])) kept_layer(rig.lights[i], moves(rig_.lights[i]));
   // The other layers are of places the lights have left.
   std::erase_if(lights_, [&](const LightLayer& layer) { return layer.last_used != calls_; });
   return relit_image(photo_layers_, analysed_.analysis().coverage, light, rig);

@@ -83,6 +83,7 @@ IlluminationImages NewIllumination::render(const GBuffer& gbuffer, const Camera&
   // of the analysis, and an unchanged rig gives back the photo.
   IlluminationOptions illumination = illumination_options(analysed_.analysis().options);
   illumination.paths_per_pixel = options.paths_per_pixel;
+  if (options.indirect_stride > 0) illumination.indirect_stride = options.indirect_stride;
   return render_illumination(gbuffer, camera, integrator, illumination, progress, label);
 }
 

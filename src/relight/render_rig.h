@@ -15,6 +15,9 @@ namespace relight {
 struct RenderOptions {
   int paths_per_pixel = 64;
   int max_bounces = IntegratorOptions::kMaxBounces;
+  // The environment and bounce light traced at every this-many-th pixel each
+  // way (IlluminationOptions::indirect_stride); 0: the analysis's.
+  int indirect_stride = 0;
 };
 
 // The analysis's layers of a re-lit image, at the photo's size or a view's:

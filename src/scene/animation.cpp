@@ -84,6 +84,17 @@ bool keys_in_order(const std::vector<LightKey>& keys) {
                             [](const LightKey& a, const LightKey& b) { return a.frame >= b.frame; }) == keys.end();
 }
 
+bool moves(const Light& light) {
+  std::optional<Vec3> position, direction;
+  for (const LightKey& key : light.keys) {
+    if (key.position && position && *key.position != *position) return true;
+    if (key.direction && direction && *key.direction != *direction) return true;
+    if (key.position) position = key.position;
+    if (key.direction) direction = key.direction;
+  }
+  return false;
+}
+
 std::optional<FrameRange> keyed_frames(const Rig& rig) {
   std::optional<FrameRange> range;
   for (const Light& light : rig.lights) {

@@ -26,6 +26,10 @@ Light light_at_frame(const Light& light, int frame);
 // The rig as frame `frame` shows it: a still rig.
 Rig rig_at_frame(const Rig& rig, int frame);
 
+// Whether the light's keys move or turn it: its place or direction keyed to
+// two different values.
+bool moves(const Light& light);
+
 // Whether `keys` are in order of frame, each frame once: the only order
 // light_at_frame reads.
 bool keys_in_order(const std::vector<LightKey>& keys);
