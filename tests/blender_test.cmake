@@ -33,3 +33,15 @@ list(LENGTH lines count)
 if(NOT rc EQUAL 2 OR NOT count EQUAL 1 OR NOT err MATCHES "no-such-photo.exr does not exist" OR EXISTS "${WORK}/refused")
   message(FATAL_ERROR "a missing photo: exit ${rc}, stderr:\n${err}")
 endif()
+
+# An animated light exported as a rig's keys (tests/blender/animated_rig.py),
+# rendered by relight frame by frame.
+run(${blender} "${WORK}/scene.blend" --python "${SOURCE_DIR}/tests/blender/animated_rig.py" -- "${exporter}"
+    "${WORK}/animated.json")
+run("${RELIGHT}" render "${WORK}/export/scene.json" --analysis "${WORK}/analysis" --rig "${WORK}/animated.json"
+    --frames 1-3 -o "${WORK}/frames/relit.##.exr")
+foreach(frame 01 02 03)
+  if(NOT EXISTS "${WORK}/frames/relit.${frame}.exr" OR NOT EXISTS "${WORK}/frames/relit.${frame}.png")
+    message(FATAL_ERROR "relight render --frames 1-3 wrote no frame ${frame}")
+  endif()
+endforeach()

@@ -73,8 +73,8 @@ TEST(Cli, VersionIsTheProjectVersion) { EXPECT_EQ(relight_stdout({"--version"}),
 
 TEST(Cli, EveryCommandHasAManPageHelpWithExamples) {
   const std::string top = relight_stdout({"--help"});
-  for (const std::string command :
-       {"analyze", "render", "rig", "fit", "compare", "preview", "camera-from-fspy", "register"}) {
+  for (const std::string command : {"analyze", "render", "rig", "fit", "compare", "preview", "camera-from-fspy",
+                                    "register", "farm", "farm-check"}) {
     EXPECT_NE(top.find("  " + command + " "), std::string::npos) << command << " missing from relight --help";
     const std::string help = relight_stdout({command, "--help"});
     for (const char* section : {"DESCRIPTION", "EXAMPLES", "EXIT STATUS", "SEE ALSO"})
@@ -164,6 +164,36 @@ TEST(Cli, RenderFramesWritesTheSequence) {
       (x < first.width / 2 ? left : right) += relight::luminance(third.at(x, y)) - relight::luminance(first.at(x, y));
   EXPECT_GT(right, 0.0);
   EXPECT_LT(left, 0.0);
+}
+
+// relight farm without Slurm: the job script's chunks of frames, and
+// farm-check's answer (status 3 and the missing frames) before any is made.
+// tests/farm_slurm_test.sh submits such jobs to a real Slurm.
+TEST(Cli, FarmWritesAJobArrayOfChunksAndChecksItsFrames) {
+  const fs::path dir = temp_folder("farm");
+  fs::create_directories(dir / "analysis");
+  relight::test::write_text(dir / "analysis" / "analysis.json", "{}");
+  const std::string scene = (kRoom / "scene.json").string(), rig = (kRoom / "rigs" / "evening.json").string();
+  ASSERT_EQ(
+      relight_run({"farm", scene, "--rig", rig, "--analysis", (dir / "analysis").string(), "--frames", "1-25",
+                   "--chunk", "10", "-o", (dir / "frames" / "lit.####.exr").string(), "--job", (dir / "job").string()}),
+      0);
+  std::ifstream script(dir / "job" / "job.sh");
+  std::stringstream text;
+  text << script.rdbuf();
+  EXPECT_NE(text.str().find("chunks=(1-10 11-20 21-25)"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("--frames \"${chunks[$SLURM_ARRAY_TASK_ID]}\""), std::string::npos) << text.str();
+  const relight::test::CliResult check = relight::test::run_cli({"farm-check", (dir / "job").string()});
+  EXPECT_EQ(check.status, 3) << check.err;
+  EXPECT_NE(check.err.find("25 frames missing"), std::string::npos) << check.err;
+  // Not a job folder; no '#' for the frame number.
+  const relight::test::CliResult bad = relight::test::run_cli({"farm-check", dir.string()});
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("farm.json"), std::string::npos) << bad.err;
+  EXPECT_EQ(relight_run({"farm", scene, "--rig", rig, "--analysis", (dir / "analysis").string(), "--frames", "1-3",
+                         "-o", (dir / "lit.exr").string(), "--job", (dir / "job2").string()}),
+            2);
+  EXPECT_FALSE(fs::exists(dir / "job2" / "job.sh"));
 }
 
 TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {

@@ -87,8 +87,9 @@ void render_frames(const RenderArgs& args, const AnalysedScene& analysed, const 
     // The first frame renders the still part too: the time left goes by the others'.
     if (done == 1) first_frame = seconds_since(frame_start);
     const double per_frame = done > 1 ? (seconds_since(start) - first_frame) / (done - 1) : first_frame;
-    std::printf("frame %d (%d of %d): %d light(s) rendered, %d reused, %.1f s; %s written; about %.0f s left\n", frame,
-                done, count, after.light_renders - before.light_renders, after.light_reuses - before.light_reuses,
+    std::printf("frame %d (%d of %d): %s%d keyed light(s) rendered, %d reused, %.1f s; %s written; about %.0f s left\n",
+                frame, done, count, after.still_renders > before.still_renders ? "the still part and " : "",
+                after.light_renders - before.light_renders, after.light_reuses - before.light_reuses,
                 seconds_since(frame_start), out.c_str(), per_frame * (count - done));
     std::fflush(stdout);
   }

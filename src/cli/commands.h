@@ -37,6 +37,13 @@ void add_camera_from_fspy_command(CLI::App& app, Action& action);
 void add_register_command(CLI::App& app, Action& action);
 void add_hdr_merge_command(CLI::App& app, Action& action);
 void add_probe_from_photo_command(CLI::App& app, Action& action);
+void add_farm_command(CLI::App& app, Action& action);
+
+// Work found not finished (relight farm-check: frames missing): exit status 3.
+class Unfinished : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // A scene to analyse, fit or register: loaded, with its ray-tracing
 // structure and the G-buffer `options` make (a scene with its analysis, to

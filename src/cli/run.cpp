@@ -81,7 +81,7 @@ std::string help_footer(const char* description, std::initializer_list<HelpExamp
   for (const HelpExample& e : examples) text += "  " + std::string(e.command) + "\n      " + e.effect + "\n";
   text +=
       "\nEXIT STATUS\n  0 done; 2 bad input (one line naming the file and the problem); 1 internal error;\n"
-      "  130 interrupted (nothing half written)\n\n"
+      "  3 work not finished (farm-check: frames missing); 130 interrupted (nothing half written)\n\n"
       "SEE ALSO\n  docs/commands.md, docs/formats.md (installed in share/doc/relight)";
   return text;
 }
@@ -142,6 +142,7 @@ int run(std::span<const std::string> args) {
   add_register_command(app, action);
   add_hdr_merge_command(app, action);
   add_probe_from_photo_command(app, action);
+  add_farm_command(app, action);
   bool force = false;
   for (const char* writer : {"analyze", "render", "rig", "preview", "fit", "mesh", "camera-from-fspy", "register",
                              "hdr-merge", "probe-from-photo"})
@@ -183,6 +184,9 @@ int run(std::span<const std::string> args) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "\nrelight: error: %s\n", printable(e.what()).c_str());
     return 2;
+  } catch (const Unfinished& e) {
+    std::fprintf(stderr, "relight: %s\n", printable(e.what()).c_str());
+    return 3;
   } catch (const Cancelled&) {
     std::fprintf(stderr, "\nrelight: cancelled; nothing was written\n");
     return 130;

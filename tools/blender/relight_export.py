@@ -2,10 +2,12 @@
 #
 # As an add-on (Edit > Preferences > Add-ons > Install..., this file):
 #   File > Export > relight scene (scene.json + geometry.obj)
+#   File > Export > relight rig (the lights as a rig.json, their animation as keys)
 #   File > Import > relight rig (lights of a rig.json or scene.json)
 # From the command line (exit 2 and one line on what is wrong with the scene or rig,
 # 1 on any other error):
 #   blender -b FILE.blend --python-exit-code 1 --python relight_export.py -- OUTDIR [--photo PHOTO]
+#   blender -b FILE.blend --python-exit-code 1 --python relight_export.py -- --export-rig RIG.json [--frames A-B]
 #   blender -b FILE.blend --python-exit-code 1 --python relight_export.py -- --import-rig RIG.json [--replace] [--save OUT.blend]
 #
 # Coordinates stay Blender's world frame (Z up): the OBJ is written without an
@@ -335,6 +337,96 @@ def export_scene(scene, outdir, photo=None):
     return target
 
 
+# ------------------------------------------------------------------ an animated rig
+
+# What a key of relight's animated rigs may set (docs/formats.md, "Animated rigs").
+_KEYABLE = ("position", "direction", "color", "power", "irradiance", "enabled")
+# What relight does not key: a light whose animation changes these is exported with its first frame's.
+_UNKEYABLE = ("up", "size", "radius", "spot_angle_deg", "blend", "angle_deg")
+
+
+def _differ(a, b, tol=1e-6):
+    if isinstance(a, list):
+        return any(_differ(x, y, tol) for x, y in zip(a, b))
+    if isinstance(a, bool) or a is None or b is None:
+        return a != b
+    return abs(a - b) > tol * max(1.0, abs(a), abs(b))
+
+
+def _bends(track, i, name):
+    """Whether the value `name` at sample i is not on the straight line through its neighbours:
+    its key is needed (the first and last always are; on/off wherever it changes)."""
+    if i == 0 or i == len(track) - 1:
+        return True
+    before, here, after = (track[j][1][name] for j in (i - 1, i, i + 1))
+    if isinstance(here, bool):
+        return here != before
+    if isinstance(here, list):
+        return any(_differ(2 * h, b + a) for b, h, a in zip(before, here, after))
+    return _differ(2 * here, before + after)
+
+
+def light_samples(scene, lights, first, last, metres):
+    """Each light's entry at every frame first..last (the scene's frame restored after)."""
+    samples = {obj.name: [] for obj in lights}
+    current = scene.frame_current
+    try:
+        for frame in range(first, last + 1):
+            scene.frame_set(frame)
+            rendered = rendered_objects(scene)
+            for obj in lights:
+                entry = light_entry(obj, metres)
+                entry["enabled"] = obj in rendered
+                samples[obj.name].append((frame, entry))
+    finally:
+        scene.frame_set(current)
+    return samples
+
+
+def animated_light(track):
+    """A light's entry from its samples: the first frame's values, and keys for those that change,
+    one where a value bends (the frames between follow linearly, as Blender's curves sampled at
+    every frame do)."""
+    light = dict(track[0][1])
+    name = light["name"]
+    for key in _UNKEYABLE:
+        if any(_differ(entry.get(key), light.get(key)) for _, entry in track):
+            print("relight_export: light '%s': its %s is animated, which relight does not key; exported "
+                  "as at frame %d" % (name, key, track[0][0]))
+    changing = [k for k in _KEYABLE if k in light and any(_differ(e[k], light[k]) for _, e in track)]
+    if changing:
+        keys = []
+        for i, (frame, entry) in enumerate(track):
+            key = {k: entry[k] for k in changing if _bends(track, i, k)}
+            if key:
+                keys.append(dict(frame=frame, interpolation="linear", **key))
+        light["keys"] = keys
+    if light["enabled"]:
+        del light["enabled"]
+    return light
+
+
+def export_rig(scene, path, frames=None):
+    """Writes the scene's lights as a relight rig at PATH, each light's animation over FRAMES
+    (first, last; default the scene's frame range) as its keys. Returns the number of animated lights."""
+    first, last = frames or (scene.frame_start, scene.frame_end)
+    if first > last:
+        raise BridgeError("the frames %d-%d run backwards" % (first, last))
+    metres = metres_per_unit(scene)
+    lights = [obj for obj in scene.objects if obj.type == 'LIGHT']
+    samples = light_samples(scene, lights, first, last, metres)
+    entries = [animated_light(samples[obj.name]) for obj in lights]
+    doc = {"format": "relight-rig/1", "environment_scale": 1.0, "lights": entries}
+    with open(path + ".part", "w") as f:
+        json.dump(doc, f, indent=2)
+        f.write("\n")
+    os.replace(path + ".part", path)
+    animated = sum(1 for e in entries if "keys" in e)
+    print("relight_export: wrote %s (%d lights, %d animated over frames %d-%d)" % (path, len(entries), animated,
+                                                                                first, last))
+    return animated
+
+
 # ------------------------------------------------------------------ import
 
 def _linear_colour(value, where):
@@ -436,6 +528,10 @@ def import_rig(path, collection=None, replace=False):
         raise BridgeError("%s: /environment_scale %r is not a number >= 0" % (path, scale))
     scene = bpy.context.scene
     metres = metres_per_unit(scene)
+    for entry in lights:
+        if "keys" in entry:
+            print("relight_export: light '%s' has keys: imported as it stands outside the animation (the keys "
+                  "do not become Blender keyframes)" % entry.get("name", "?"))
     # Every light is made before anything in the scene changes: a bad entry changes nothing.
     made = [_light_from_entry(entry, "%s: /lights/%d" % (path, i), metres) for i, entry in enumerate(lights)]
     if replace:
@@ -474,6 +570,30 @@ class RELIGHT_OT_export(bpy.types.Operator):
         return {'RUNNING_MODAL'}
 
 
+class RELIGHT_OT_export_rig(bpy.types.Operator):
+    """Export the scene's lights as a relight rig, their animation over the frame range as keys"""
+    bl_idname = "relight.export_rig"
+    bl_label = "Export relight rig"
+
+    filepath: bpy.props.StringProperty(subtype='FILE_PATH')
+    filter_glob: bpy.props.StringProperty(default="*.json", options={'HIDDEN'})
+
+    def execute(self, context):
+        try:
+            export_rig(context.scene, bpy.path.abspath(self.filepath))
+        except (BridgeError, OSError) as e:
+            self.report({'ERROR'}, "relight rig export: %s" % e)
+            return {'CANCELLED'}
+        self.report({'INFO'}, "relight rig written to " + self.filepath)
+        return {'FINISHED'}
+
+    def invoke(self, context, event):
+        if not self.filepath:
+            self.filepath = "rig.json"
+        context.window_manager.fileselect_add(self)
+        return {'RUNNING_MODAL'}
+
+
 class RELIGHT_OT_import_rig(bpy.types.Operator):
     """Create Blender lights from a relight rig.json or scene.json"""
     bl_idname = "relight.import_rig"
@@ -499,6 +619,7 @@ class RELIGHT_OT_import_rig(bpy.types.Operator):
 
 def _export_menu(self, context):
     self.layout.operator(RELIGHT_OT_export.bl_idname, text="relight scene (scene.json)")
+    self.layout.operator(RELIGHT_OT_export_rig.bl_idname, text="relight rig (.json, animated lights)")
 
 
 def _import_menu(self, context):
@@ -507,6 +628,7 @@ def _import_menu(self, context):
 
 def register():
     bpy.utils.register_class(RELIGHT_OT_export)
+    bpy.utils.register_class(RELIGHT_OT_export_rig)
     bpy.utils.register_class(RELIGHT_OT_import_rig)
     bpy.types.TOPBAR_MT_file_export.append(_export_menu)
     bpy.types.TOPBAR_MT_file_import.append(_import_menu)
@@ -516,6 +638,7 @@ def unregister():
     bpy.types.TOPBAR_MT_file_import.remove(_import_menu)
     bpy.types.TOPBAR_MT_file_export.remove(_export_menu)
     bpy.utils.unregister_class(RELIGHT_OT_import_rig)
+    bpy.utils.unregister_class(RELIGHT_OT_export_rig)
     bpy.utils.unregister_class(RELIGHT_OT_export)
 
 
@@ -526,12 +649,20 @@ def main(argv):
     parser = argparse.ArgumentParser(prog="blender -b FILE.blend --python relight_export.py --")
     parser.add_argument("outdir", nargs="?", help="folder to write scene.json, geometry.obj and the photo to")
     parser.add_argument("--photo", help="the HDR photo (default: the camera's background image)")
+    parser.add_argument("--export-rig", metavar="RIG", help="instead: write the lights as a rig, animated ones keyed")
+    parser.add_argument("--frames", metavar="A-B", help="with --export-rig: the frames (default: the scene's range)")
     parser.add_argument("--import-rig", metavar="RIG", help="instead: create the lights of RIG as Blender lights")
     parser.add_argument("--replace", action="store_true", help="with --import-rig: delete the scene's lights first")
     parser.add_argument("--save", metavar="BLEND", help="with --import-rig: save the result as BLEND")
     args = parser.parse_args(argv)
     try:
-        if args.import_rig:
+        if args.export_rig:
+            frames = None
+            if args.frames:
+                first, _, last = args.frames.partition("-")
+                frames = (int(first), int(last or first))
+            export_rig(bpy.context.scene, os.path.abspath(args.export_rig), frames)
+        elif args.import_rig:
             made = import_rig(args.import_rig, replace=args.replace)
             print("relight_export: %d lights imported from %s" % (len(made), args.import_rig))
             if args.save:
@@ -539,7 +670,7 @@ def main(argv):
         elif args.outdir:
             export_scene(bpy.context.scene, os.path.abspath(args.outdir), args.photo and os.path.abspath(args.photo))
         else:
-            parser.error("give OUTDIR, or --import-rig RIG")
+            parser.error("give OUTDIR, --export-rig RIG or --import-rig RIG")
     except (BridgeError, ValueError, OSError) as e:
         print("relight_export: error: %s" % e, file=sys.stderr)
         sys.exit(2)
