@@ -306,8 +306,9 @@ json light_keys_to_json(const Light& l) {
     json k;
     k["frame"] = key.frame;
     if (key.interpolation != Interpolation::smooth) k["interpolation"] = to_string(key.interpolation);
-    if (key.position) k["position"] = v3(*key.position);
-    if (key.direction) k["direction"] = v3(*key.direction);
+    // Only what the light's type has (its type may have changed in the studio).
+    if (key.position && l.type != LightType::directional) k["position"] = v3(*key.position);
+    if (key.direction && l.type != LightType::point) k["direction"] = v3(*key.direction);
     if (key.color) k["color"] = v3(*key.color);
     if (key.power) k[l.type == LightType::directional ? "irradiance" : "power"] = *key.power;
     if (key.enabled) k["enabled"] = *key.enabled;

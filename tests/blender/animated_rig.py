@@ -1,10 +1,11 @@
 # The exporter's animated rig: on the example scene, the lamp is carried
 # across the room (Blender's default Bezier easing) and dimmed, the spot
-# turned at a constant rate (linear keyframes) and hidden from frame 8, the
-# panel left still. Exported over frames 1-10, the rig's keys must give back,
-# at every frame, what Blender has there, read the way relight reads them
-# (linear between keys, held outside, on/off held); the linear turn takes
-# its two end keys only, a still light none.
+# turned at a constant rate and hidden from frame 8, the panel slid at a
+# constant speed (linear keyframes), the sun left still. Exported over
+# frames 1-10, the rig's keys must give back, at every frame, what Blender
+# has there, read the way relight reads them (linear between keys, held
+# outside, on/off held); the panel's slide takes its two end keys only, the
+# still sun none.
 #   blender -b SCENE.blend --python-exit-code 1 --python animated_rig.py -- EXPORTER RIG
 import importlib.util
 import json
@@ -20,7 +21,7 @@ spec.loader.exec_module(exporter)
 
 scene = bpy.context.scene
 scene.frame_start, scene.frame_end = 1, 10
-lamp, spot = bpy.data.objects["Lamp"], bpy.data.objects["Spot"]
+lamp, spot, panel = bpy.data.objects["Lamp"], bpy.data.objects["Spot"], bpy.data.objects["Panel"]
 lamp.keyframe_insert("location", frame=1)
 lamp.data.keyframe_insert("energy", frame=1)
 lamp.location.x += 2.0
@@ -30,9 +31,13 @@ lamp.data.keyframe_insert("energy", frame=10)
 spot.keyframe_insert("rotation_euler", frame=1)
 spot.rotation_euler.z += math.radians(30.0)
 spot.keyframe_insert("rotation_euler", frame=10)
-for curve in spot.animation_data.action.fcurves:
-    for point in curve.keyframe_points:
-        point.interpolation = 'LINEAR'
+panel.keyframe_insert("location", frame=1)
+panel.location.x -= 1.0
+panel.keyframe_insert("location", frame=10)
+for obj in (spot, panel):
+    for curve in obj.animation_data.action.fcurves:
+        for point in curve.keyframe_points:
+            point.interpolation = 'LINEAR'
 spot.hide_render = False
 spot.keyframe_insert("hide_render", frame=1)
 spot.hide_render = True
@@ -71,7 +76,7 @@ def close(a, b):
 for frame in range(1, 11):
     scene.frame_set(frame)
     rendered = exporter.rendered_objects(scene)
-    for obj in (lamp, spot, bpy.data.objects["Panel"]):
+    for obj in (lamp, spot, panel, bpy.data.objects["Sun"]):
         truth = exporter.light_entry(obj)
         truth["enabled"] = obj in rendered
         for name in ("position", "direction", "power", "enabled"):
@@ -79,9 +84,10 @@ for frame in range(1, 11):
                 got = relight_value(lights[obj.name], name, frame)
                 assert close(got, truth[name]), (obj.name, name, frame, got, truth[name])
 
-assert "keys" not in lights["Panel"], lights["Panel"]
-spot_turns = [k for k in lights["Spot"]["keys"] if "direction" in k]
-assert [k["frame"] for k in spot_turns] == [1, 10], spot_turns
+assert "keys" not in lights["Sun"], lights["Sun"]
+assert [k["frame"] for k in lights["Panel"]["keys"]] == [1, 10], lights["Panel"]["keys"]
+# A turn at a constant rate is an arc: its direction bends at every frame.
+assert len([k for k in lights["Spot"]["keys"] if "direction" in k]) == 10, lights["Spot"]["keys"]
 assert [k["frame"] for k in lights["Spot"]["keys"] if "enabled" in k] == [1, 8, 10], lights["Spot"]["keys"]
 assert len([k for k in lights["Lamp"]["keys"] if "position" in k]) == 10  # an eased move bends at every frame
 print("animated_rig: the rig's keys give Blender's lights at every frame")
