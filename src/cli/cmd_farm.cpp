@@ -2,7 +2,7 @@
 // chunk of frames rendered by `relight render --frames` with the analysis
 // shared read-only; relight farm-check: which frames are done, and the
 // chunks of those that are not submitted again.
-#include <spdlog/spdlog.h>
+#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -76,9 +76,11 @@ std::string run_command(const std::string& command, const std::string& what) {
   char buffer[4096];
   while (size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
   const int status = pclose(pipe);
-  if (status != 0) {
+  if (status != 0) {  // a wait status: the exit code is its high byte
     while (!output.empty() && (output.back() == '\n' || output.back() == '\r')) output.pop_back();
-    throw InputError(what, "", "'" + command + "' failed (status " + std::to_string(status) + "): " + output);
+    throw InputError(what, "",
+                     "'" + command + "' failed (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                         "): " + output);
   }
   return output;
 }
@@ -141,13 +143,15 @@ void run_farm(const FarmArgs& args, Progress&) {
   write_text_atomically(job / kScript, job_script(args, chunks, job));
   fs::permissions(job / kScript, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
                   fs::perm_options::add);
+  // The manifest first: a submission that fails leaves a job farm-check reads.
+  write_text_atomically(job / kManifest, manifest.dump(2) + "\n");
   if (args.submit) {
     const std::string id = submit(args.sbatch, job, "0-" + std::to_string(chunks.size() - 1));
     manifest["submissions"].push_back(id);
+    write_text_atomically(job / kManifest, manifest.dump(2) + "\n");
     std::printf("submitted job %s: %zu tasks of up to %d frames (frames %d-%d)\n", id.c_str(), chunks.size(),
                 args.chunk, frames->first, frames->last);
   }
-  write_text_atomically(job / kManifest, manifest.dump(2) + "\n");
   std::printf("job written to %s (%zu tasks of up to %d frames, frames %d-%d)%s\n", (job / kScript).c_str(),
               chunks.size(), args.chunk, frames->first, frames->last,
               args.submit ? "" : "; submit it with: sbatch --array=0-N job.sh, or relight farm ... --submit");

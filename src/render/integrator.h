@@ -105,6 +105,12 @@ class Integrator {
     return d + i;
   }
 
+  // Whether every path's light is 0: no light lit, a black environment and
+  // no known radiance.
+  bool is_dark() const {
+    return active_lights_.empty() && pooled_lights_.empty() && lighting_.environment.is_black() && !known_;
+  }
+
   // Environment radiance seen along a camera ray from `origin`.
   Vec3 environment(const Vec3& origin, const Vec3& dir) const;
 

@@ -290,6 +290,9 @@ IlluminationParts render_illumination_parts(const GBuffer& gbuffer, const Integr
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                                        const IlluminationOptions& options, Progress& progress, const std::string& label,
                                        const Image* direct) {
+  // Nothing to light with (a rig of lights switched off, no environment):
+  // no path needs tracing.
+  if (integrator.is_dark()) return {Image(gbuffer.width(), gbuffer.height()), Image(gbuffer.width(), gbuffer.height())};
   IlluminationParts parts{
       direct ? *direct : render_direct_part(gbuffer, integrator, options, progress, label + ": direct light"),
       render_indirect_part(gbuffer, integrator, options, progress, label)};
