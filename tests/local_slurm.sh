@@ -32,7 +32,7 @@ start_local_slurm() {
   export SLURM_CONF="$work/slurm.conf"
   cat >"$SLURM_CONF" <<CONF
 ClusterName=relighttest
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmctldPort=$port
 SlurmdPort=$((port + 1))
 SlurmUser=root
