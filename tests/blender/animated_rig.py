@@ -5,7 +5,8 @@
 # frames 1-10, the rig's keys must give back, at every frame, what Blender
 # has there, read the way relight reads them (linear between keys, held
 # outside, on/off held); the panel's slide takes its two end keys only, the
-# still sun none.
+# still sun none. Imported back, the keys become keyframes that give the
+# same lights at every frame.
 #   blender -b SCENE.blend --python-exit-code 1 --python animated_rig.py -- EXPORTER RIG
 import importlib.util
 import json
@@ -90,4 +91,16 @@ assert [k["frame"] for k in lights["Panel"]["keys"]] == [1, 10], lights["Panel"]
 assert len([k for k in lights["Spot"]["keys"] if "direction" in k]) == 10, lights["Spot"]["keys"]
 assert [k["frame"] for k in lights["Spot"]["keys"] if "enabled" in k] == [1, 8, 10], lights["Spot"]["keys"]
 assert len([k for k in lights["Lamp"]["keys"] if "position" in k]) == 10  # an eased move bends at every frame
-print("animated_rig: the rig's keys give Blender's lights at every frame")
+# Back into Blender: the imported lights' keyframes give the rig's values at every frame.
+imported = {obj.name.rsplit(".", 1)[0]: obj for obj in exporter.import_rig(rig_path)}
+assert set(imported) == set(lights), (set(imported), set(lights))
+for frame in range(1, 11):
+    scene.frame_set(frame)
+    for name, obj in imported.items():
+        back = exporter.light_entry(obj)
+        for value in ("position", "direction", "power"):
+            if value in back:
+                got = relight_value(lights[name], value, frame)
+                assert close(back[value], got), (name, value, frame, back[value], got)
+        assert (not obj.hide_render) == relight_value(lights[name], "enabled", frame), (name, frame)
+print("animated_rig: the rig's keys give Blender's lights at every frame, and come back as keyframes")

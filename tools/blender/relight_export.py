@@ -511,10 +511,62 @@ def _light_from_entry(entry, where, metres):
     return name, obj
 
 
+_INTERPOLATION = {"constant": 'CONSTANT', "linear": 'LINEAR', "smooth": 'BEZIER'}
+
+
+def _check_keys(entry, where):
+    """Refuses keys _keyframe_light cannot make keyframes of, before anything changes."""
+    keys = entry.get("keys", [])
+    if not isinstance(keys, list) or not all(isinstance(key, dict) for key in keys):
+        raise BridgeError("%s/keys is not a list of keys" % where)
+    for i, key in enumerate(keys):
+        if not isinstance(key.get("frame"), int):
+            raise BridgeError("%s/keys/%d: a key needs a whole \"frame\"" % (where, i))
+        if key.get("interpolation", "smooth") not in _INTERPOLATION:
+            raise BridgeError("%s/keys/%d/interpolation: %r is not constant, linear or smooth"
+                              % (where, i, key["interpolation"]))
+
+
+def _keyframe_light(obj, entry, where, metres):
+    """The keys of an animated rig's light as Blender keyframes on OBJ (in the scene): each value
+    at its keys' frames, with their interpolation (relight's smooth as Blender's Bezier, whose
+    auto-clamped handles are close to it but not the same curve)."""
+    data, euler = obj.data, obj.rotation_euler.copy()
+    for i, key in enumerate(entry.get("keys", [])):
+        at = "%s/keys/%d" % (where, i)
+        frame, interpolation = key["frame"], _INTERPOLATION[key.get("interpolation", "smooth")]
+        keyed = []  # (ID, property)
+        if "position" in key:
+            obj.location = mathutils.Vector(key["position"]) / metres
+            keyed.append((obj, "location"))
+        if "direction" in key:
+            euler = _orientation(key["direction"], entry.get("up")).to_euler('XYZ', euler)
+            obj.rotation_euler = euler
+            keyed.append((obj, "rotation_euler"))
+        if "color" in key:
+            data.color = _linear_colour(key["color"], at + "/color")
+            keyed.append((data, "color"))
+        power = key.get("irradiance" if entry.get("type") == "directional" else "power")
+        if power is not None:
+            data.energy = power if entry.get("type") == "directional" else power / metres ** 2
+            keyed.append((data, "energy"))
+        if "enabled" in key:
+            obj.hide_render = not key["enabled"]
+            keyed.append((obj, "hide_render"))
+        for owner, prop in keyed:
+            owner.keyframe_insert(prop, frame=frame)
+            for curve in owner.animation_data.action.fcurves:
+                if curve.data_path == prop:
+                    for point in curve.keyframe_points:
+                        if point.co.x == frame:
+                            point.interpolation = interpolation
+
+
 def import_rig(path, collection=None, replace=False):
     """Creates Blender lights for the lights of a rig.json (or scene.json), after deleting the
     scene's lights if `replace`, and scales the world by the rig's environment_scale; returns the
-    lights. Lengths are turned into the scene's units (its Unit Scale)."""
+    lights. Lengths are turned into the scene's units (its Unit Scale). An animated rig's keys
+    become keyframes."""
     with open(path) as f:
         doc = json.load(f)
     if not isinstance(doc, dict) or doc.get("format") not in ("relight-rig/1", "relight-scene/1"):
@@ -528,19 +580,18 @@ def import_rig(path, collection=None, replace=False):
         raise BridgeError("%s: /environment_scale %r is not a number >= 0" % (path, scale))
     scene = bpy.context.scene
     metres = metres_per_unit(scene)
-    for entry in lights:
-        if "keys" in entry:
-            print("relight_export: light '%s' has keys: imported as it stands outside the animation (the keys "
-                  "do not become Blender keyframes)" % entry.get("name", "?"))
     # Every light is made before anything in the scene changes: a bad entry changes nothing.
+    for i, entry in enumerate(lights):
+        _check_keys(entry, "%s: /lights/%d" % (path, i))
     made = [_light_from_entry(entry, "%s: /lights/%d" % (path, i), metres) for i, entry in enumerate(lights)]
     if replace:
         for obj in [o for o in scene.objects if o.type == 'LIGHT']:
             bpy.data.objects.remove(obj)
     collection = collection or scene.collection
-    for name, obj in made:
+    for i, ((name, obj), entry) in enumerate(zip(made, lights)):
         collection.objects.link(obj)
         obj.name = name  # the rig's name, now that a replaced light no longer holds it
+        _keyframe_light(obj, entry, "%s: /lights/%d" % (path, i), metres)
     scale_world(scene, float(scale))
     return [obj for _, obj in made]
 
