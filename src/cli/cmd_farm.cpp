@@ -165,6 +165,9 @@ json read_manifest(const fs::path& job) {
     json manifest = json::parse(in);
     if (manifest.value("format", "") != "relight-farm/1")
       throw InputError(path.string(), "/format", "expected \"relight-farm/1\"");
+    // What farm-check reads, checked here: a wrong type throws.
+    manifest.at("output").get<std::string>();
+    manifest.at("chunks").get<std::vector<std::string>>();
     return manifest;
   } catch (const json::exception& e) {
     throw InputError(path.string(), "", std::string("malformed: ") + e.what());
@@ -180,9 +183,12 @@ void run_check(const CheckArgs& args, Progress&) {
   std::string unfinished_chunks;  // array task indices: "3,7"
   int frames = 0;
   for (size_t i = 0; i < chunks.size(); ++i) {
-    const FrameRange range = *parse_frame_range(chunks[i]);
+    const std::optional<FrameRange> range = parse_frame_range(chunks[i]);
+    if (!range)
+      throw InputError((job / kManifest).string(), "/chunks/" + std::to_string(i),
+                       "expected a range of frames (1-10), got '" + chunks[i] + "'");
     bool whole = true;
-    for (int frame = range.first; frame <= range.last; ++frame, ++frames) {
+    for (int frame = range->first; frame <= range->last; ++frame, ++frames) {
       fs::path exr = frame_file(out, frame), png = exr;
       png.replace_extension(".png");
       if (fs::exists(exr) && fs::exists(png)) continue;

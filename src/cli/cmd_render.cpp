@@ -28,8 +28,8 @@ struct RenderArgs {
   float exposure = 0.0f;
 };
 
-// The EXR and the PNG beside it, appearing together.
-void write_relit(fs::path out, const Image& image, float exposure) {
+// The EXR and the PNG beside it, appearing together; their paths.
+std::pair<fs::path, fs::path> write_relit(fs::path out, const Image& image, float exposure) {
   if (out.extension() != ".exr") out += ".exr";
   fs::path png = out;
   png.replace_extension(".png");
@@ -37,6 +37,7 @@ void write_relit(fs::path out, const Image& image, float exposure) {
   write_exr(out, image);
   write_png(png, image, exposure);
   pair.commit();
+  return {out, png};
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -80,8 +81,7 @@ void render_frames(const RenderArgs& args, const AnalysedScene& analysed, const 
     const auto frame_start = std::chrono::steady_clock::now();
     const FrameSequence::Stats before = sequence.stats();
     const Image image = sequence.render(frame, progress);
-    const fs::path out = frame_file(args.out, frame);
-    write_relit(out, image, args.exposure);
+    const fs::path out = write_relit(frame_file(args.out, frame), image, args.exposure).first;
     const FrameSequence::Stats& after = sequence.stats();
     const int done = frame - frames.first + 1;
     // The first frame renders the still part too: the time left goes by the others'.
@@ -121,11 +121,7 @@ void run_render(const RenderArgs& args, Progress& progress) {
   render_options.max_bounces = args.options.max_bounces;
   if (frames) return render_frames(args, *analysed, rig, *frames, render_options, progress);
   const Image image = render_rig(*analysed, rig, render_options, progress);
-  fs::path out(args.out);
-  if (out.extension() != ".exr") out += ".exr";
-  write_relit(out, image, args.exposure);
-  fs::path png = out;
-  png.replace_extension(".png");
+  const auto [out, png] = write_relit(args.out, image, args.exposure);
   std::printf("re-lit image written to %s and %s in %.1f s\n", out.c_str(), png.c_str(), seconds_since(start));
 }
 

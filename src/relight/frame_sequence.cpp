@@ -31,11 +31,9 @@ FrameSequence::FrameSequence(const AnalysedScene& analysed, const Rig& rig, cons
       illumination_(analysed),
       photo_layers_(photo_layers(analysed.scene(), analysed.analysis())) {
   const Camera& camera = analysed.scene().camera;
-  const int analysis_stride = analysed.analysis().options.indirect_stride;
-  const int still_stride = options.indirect_stride > 0 ? options.indirect_stride
-                           : analysis_stride > 0       ? analysis_stride
-                                                       : sparse_indirect_stride(camera.width(), camera.height());
-  moving_options_.indirect_stride = 2 * still_stride;
+  moving_options_.indirect_stride =
+      2 * indirect_stride(illumination_.illumination_options(options), camera.width(), camera.height());
+  for (const Light& light : rig.lights) moving_.push_back(moves(light));
 }
 
 FrameSequence::LightLayer* FrameSequence::kept_layer(const Light& light, bool moving) {
@@ -81,11 +79,12 @@ Image FrameSequence::render(int frame, Progress& progress) {
   // A layer serves one light a frame: two lights in one place (a pair of
   // bulbs) take one each. A light switched off keeps its layer for when it
   // comes back on.
+  const auto keyed = [&](size_t i) { return !rig_.lights[i].keys.empty(); };
   for (size_t i = 0; i < rig.lights.size(); ++i)
-    if (const Light& l = rig.lights[i]; !rig_.lights[i].keys.empty() && lit(l))
-      accumulate(light.surface, light_layer(l, moves(rig_.lights[i]), progress).surface, l.emission());
+    if (const Light& l = rig.lights[i]; keyed(i) && lit(l))
+      accumulate(light.surface, light_layer(l, moving_[i], progress).surface, l.emission());
   for (size_t i = 0; i < rig.lights.size(); ++i)
-    if (!rig_.lights[i].keys.empty() && !lit(rig.lights[i])) kept_layer(rig.lights[i], moves(rig_.lights[i]));
+    if (keyed(i) && !lit(rig.lights[i])) kept_layer(rig.lights[i], moving_[i]);
   // The other layers are of places the lights have left.
   std::erase_if(lights_, [&](const LightLayer& layer) { return layer.last_used != calls_; });
   return relit_image(photo_layers_, analysed_.analysis().coverage, light, rig);

@@ -56,6 +56,7 @@ class FrameSequence {
   RenderOptions options_, moving_options_;
   NewIllumination illumination_;
   RelitLayers photo_layers_;
+  std::vector<bool> moving_;  // per light of the rig: its keys move or turn it
   std::vector<LightLayer> lights_;
   std::unique_ptr<IlluminationImages> still_;
   int calls_ = 0;

@@ -79,12 +79,16 @@ IlluminationImages NewIllumination::render(const GBuffer& gbuffer, const Camera&
   integrator_options.max_bounces = options.max_bounces;
   integrator_options.first_surface_lights = first_surface_lights;
   const Integrator integrator(analysed_.rays(), lighting, &bounce_albedo_, integrator_options);
+  return render_illumination(gbuffer, camera, integrator, illumination_options(options), progress, label);
+}
+
+IlluminationOptions NewIllumination::illumination_options(const RenderOptions& options) const {
   // The analysis's seed: the noise of the new illumination then follows that
   // of the analysis, and an unchanged rig gives back the photo.
-  IlluminationOptions illumination = illumination_options(analysed_.analysis().options);
+  IlluminationOptions illumination = relight::illumination_options(analysed_.analysis().options);
   illumination.paths_per_pixel = options.paths_per_pixel;
   if (options.indirect_stride > 0) illumination.indirect_stride = options.indirect_stride;
-  return render_illumination(gbuffer, camera, integrator, illumination, progress, label);
+  return illumination;
 }
 
 Image NewIllumination::render_background(const GBuffer& gbuffer, const Camera& camera,

@@ -75,6 +75,8 @@ class NewIllumination {
   IlluminationImages render(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
                             const RenderOptions& options, Progress& progress, const std::string& label,
                             bool first_surface_lights = true) const;
+  // The illumination options render() uses with `options`.
+  IlluminationOptions illumination_options(const RenderOptions& options) const;
   // The radiance of `lighting`'s environment behind each pixel's background
   // samples (IlluminationImages::background) alone: no path is traced.
   Image render_background(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting) const;

@@ -174,6 +174,10 @@ int sparse_indirect_stride(int width, int height) {
   return std::max(1, int(std::lround(std::sqrt(pixels / double(kSparseIndirectPixels)))));
 }
 
+int indirect_stride(const IlluminationOptions& options, int width, int height) {
+  return options.indirect_stride > 0 ? options.indirect_stride : sparse_indirect_stride(width, height);
+}
+
 int direct_samples_per_pixel(int paths_per_pixel, const GBuffer& g) {
   const double pixels = double(g.width()) * double(g.height());
   const int budget = int(std::min(double(paths_per_pixel), paths_per_pixel * double(kDirectSampledPixels) / pixels));
@@ -215,7 +219,7 @@ Image render_direct_part(const GBuffer& g, const Integrator& integrator, const I
 Image render_indirect_part(const GBuffer& g, const Integrator& integrator, const IlluminationOptions& options,
                            Progress& progress, const std::string& label) {
   const int w = g.width(), h = g.height();
-  const int stride = options.indirect_stride > 0 ? options.indirect_stride : sparse_indirect_stride(w, h);
+  const int stride = indirect_stride(options, w, h);
   const SparseGrid grid(g, stride);
   Image traced(grid.width, grid.height);
   std::vector<float> variance(traced.size(), 0.0f);

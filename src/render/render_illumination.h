@@ -39,6 +39,9 @@ struct IlluminationOptions {
 // (every pixel of a smaller one).
 inline constexpr int64_t kSparseIndirectPixels = 1 << 19;
 int sparse_indirect_stride(int width, int height);
+// The stride a width x height render with `options` traces at: theirs, or
+// sparse_indirect_stride's.
+int indirect_stride(const IlluminationOptions& options, int width, int height);
 
 // The direct light's samples per pixel: paths_per_pixel up to
 // kDirectSampledPixels pixels, fewer beyond, so that a larger image takes

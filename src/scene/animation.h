@@ -30,8 +30,4 @@ Rig rig_at_frame(const Rig& rig, int frame);
 // two different values.
 bool moves(const Light& light);
 
-// Whether `keys` are in order of frame, each frame once: the only order
-// light_at_frame reads.
-bool keys_in_order(const std::vector<LightKey>& keys);
-
 }  // namespace relight
