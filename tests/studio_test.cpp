@@ -293,7 +293,7 @@ class StudioTest : public QObject {
   // A photo over preview_above_pixels opens with a preview analysis; the
   // full one runs meanwhile and takes its place, the lights moved meanwhile
   // kept, and is what the cache keeps.
-  void a_large_photo_opens_with_a_preview_and_the_full_analysis_follows() {
+  void a_large_photo_opens_with_a_preview_and_the_full_analysis_keeps_its_edits() {
     StudioOptions options = quick_options();
     options.preview_above_pixels = 1;  // the test scene's photo counts as large
     window_ = std::make_unique<MainWindow>(options);
@@ -310,14 +310,23 @@ class StudioTest : public QObject {
     QCOMPARE(document().studio_scene().analysed->analysis().options.paths_per_pixel, 4);  // 4 / 8, at least 4
     QCOMPARE(document().studio_scene().analysed->analysis().options.gbuffer_samples, 1);
     QVERIFY(window_->busy());  // the full analysis
-    Light moved = document().light(0);
+    const Light start = document().light(0);
+    Light moved = start;
     moved.position += Vec3(0.1f, 0.0f, 0.0f);
-    document().set_light(0, moved);
+    window_->change_light(0, moved);
+    const LightingDocument* edited = &document();
     QVERIFY(full.wait(240000));
     QCOMPARE(full.at(0).at(0).toString(), QString());
     QVERIFY(!document().studio_scene().preview);
     QCOMPARE(document().studio_scene().analysed->analysis().options.gbuffer_samples, 9);
+    QCOMPARE(&document(), edited);  // the same design, its views and history
     expect_same_light(document().light(0), moved);
+    expect_same_light(document().session().rig().lights[0], moved);
+    // The edit made on the preview is undone on the full analysis.
+    QCOMPARE(window_->undo_stack().count(), 1);
+    window_->undo_stack().undo();
+    expect_same_light(document().light(0), start);
+    expect_same_light(document().session().rig().lights[0], start);
     QVERIFY(fs::exists(other / "scene.analysis" / "analysis.json"));
     QVERIFY(!window_->busy());
   }

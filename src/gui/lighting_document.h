@@ -65,6 +65,10 @@ class LightingDocument : public QObject {
   // Replaces the whole rig (a rig file was opened); the session keeps the
   // images of the lights that did not move.
   void reset_rig(const Rig& rig);
+  // Another analysis of the same scene (the full one after the preview):
+  // the session starts again on it with the design as it is — rig, solo,
+  // sky — so the views and the undo history stay with this document.
+  void replace_scene(std::shared_ptr<const StudioScene> scene, const SessionOptions& options);
 
  signals:
   void lightChanged(int index);
@@ -73,6 +77,7 @@ class LightingDocument : public QObject {
   void environmentScaleChanged(float scale);
   void skyChanged();
   void rigReset();
+  void sceneReplaced();
   void soloChanged(int index);
 
  private:

@@ -323,17 +323,25 @@ void MainWindow::replace_preview() {
           emit fullAnalysisDone(error);
           return;
         }
-        const Rig rig = document_->rig();
-        install_scene(*loaded, scene_path_, rig_path_, &rig);
+        scene_ = *loaded;
+        document_->replace_scene(scene_, session_options_for(*scene_));
+        show_analysis();
+        select_light(selected_);
         emit fullAnalysisDone({});
       });
 }
 
+SessionOptions MainWindow::session_options_for(const StudioScene& scene) const {
+  SessionOptions session = options_.session;
+  choose_view_size(scene.analysed->scene().photo, options_.max_view_width, session);
+  return session;
+}
+
 void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path,
-                               const QString& rig_path, const Rig* keep_rig) {
-  Rig rig = keep_rig ? *keep_rig : rig_from_scene(scene->analysed->scene());
-  QString loaded_rig_path = keep_rig ? rig_path : QString();
-  if (!keep_rig && !rig_path.isEmpty()) {
+                               const QString& rig_path) {
+  Rig rig = rig_from_scene(scene->analysed->scene());
+  QString loaded_rig_path;
+  if (!rig_path.isEmpty()) {
     try {
       rig = load_rig(rig_path.toStdString());
       loaded_rig_path = rig_path;
@@ -341,14 +349,12 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
       show_error(QString::fromStdString(e.what()) + tr(" (the scene's own lights are used instead)"));
     }
   }
-  SessionOptions session = options_.session;
-  choose_view_size(scene->analysed->scene().photo, options_.max_view_width, session);
   undo_.clear();
   lights_->set_document(nullptr);
   photo_view().set_document(nullptr);
   document_.reset();
   scene_ = std::move(scene);
-  document_ = std::make_unique<LightingDocument>(scene_, rig, session);
+  document_ = std::make_unique<LightingDocument>(scene_, rig, session_options_for(*scene_));
   scene_path_ = scene_path;
   rig_path_ = loaded_rig_path;
 
@@ -367,13 +373,20 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   connect(document_.get(), &LightingDocument::environmentScaleChanged, photo_panel_, &PhotoPanel::show_ambient);
   connect(document_.get(), &LightingDocument::soloChanged, this, &MainWindow::update_actions);
   photo_panel_->show_ambient(rig.environment_scale);
-  photo_view().set_photo(std::make_shared<const Image>(scene_->analysed->scene().photo));
-  photo_view().set_relit(nullptr);
-  photo_view().set_geometry_edges(geometry_edges_image(scene_->analysed->gbuffer()));
   photo_panel_->set_exposure(display_exposure_for(scene_->analysed->scene().photo));
+  show_analysis();
   select_light(document_->light_count() > 0 ? 0 : -1);
   remember(kRecentScenes, scene_path);
   if (!rig_path_.isEmpty()) remember(kRecentRigs, rig_path_);
+  geometry_view().setFocus();
+  update_actions();
+  update_title();
+}
+
+void MainWindow::show_analysis() {
+  photo_view().set_photo(std::make_shared<const Image>(scene_->analysed->scene().photo));
+  photo_view().set_relit(nullptr);
+  photo_view().set_geometry_edges(geometry_edges_image(scene_->analysed->gbuffer()));
   QString opened =
       scene_->preview ? tr("A preview analysis (a reduced photo, few paths); the full one follows")
       : scene_->from_cache
@@ -385,9 +398,6 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   statusBar()->showMessage(opened, 8000);
   if (!document_->session().backend_note().empty())
     statusBar()->showMessage(QString::fromStdString(document_->session().backend_note()), 8000);
-  geometry_view().setFocus();
-  update_actions();
-  update_title();
 }
 
 bool MainWindow::open_rig(const QString& path) {

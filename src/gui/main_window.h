@@ -125,12 +125,15 @@ class MainWindow : public QMainWindow {
  private:
   void connect_panels();
   void make_menus();
-  // keep_rig: the lights being edited (a preview replaced), else those of
-  // rig_path or the scene.
-  void install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path, const QString& rig_path,
-                     const Rig* keep_rig = nullptr);
+  // A new document on `scene` with the lights of rig_path (or the scene's).
+  void install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path, const QString& rig_path);
+  // The open analysis on screen: the photo, its geometry's edges, and what
+  // the status bar says of it.
+  void show_analysis();
+  SessionOptions session_options_for(const StudioScene& scene) const;
   // Analyses the open scene in full on a worker and puts it in the
-  // preview's place, keeping the rig.
+  // preview's place under the same document: the design, the selection and
+  // the undo history carry over.
   void replace_preview();
   void run_task(const QString& label, BackgroundTask::Work work, std::function<void(const QString&)> done);
   void show_error(const QString& text);
