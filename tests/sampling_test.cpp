@@ -65,6 +65,37 @@ TEST(ProgressLine, EstimatesTheTimeLeftFromThePaceSoFar) {
   EXPECT_NE(progress_line("analysis", 0.5, 4.0).find(" 50%    4.0s"), std::string::npos);
 }
 
+// A job's time left: each stage to come at the pace its kind went at in
+// this run, before that at the pace of what has run.
+TEST(JobEstimate, TimesTheStagesToComeAtThePaceTheirKindWent) {
+  enum { direct, bounce };
+  JobEstimate job({{"direct light", direct, 100.0},
+                   {"illumination", bounce, 10.0},
+                   {"interreflection 1", bounce, 10.0},
+                   {"interreflection 2", bounce, 10.0},
+                   {"rendered back", bounce, 20.0}});
+  EXPECT_FALSE(job.seconds_left(0.5, 3.0));  // nothing begun
+  job.begin("direct light", 1.0);
+  EXPECT_FALSE(job.seconds_left(0.02, 3.0));  // too early to tell
+  // Half the direct light in 2 s: 0.04 s per unit, for this stage and, with
+  // no other pace known, for the 50 units to come.
+  EXPECT_NEAR(*job.seconds_left(0.5, 3.0), 2.0 + 0.04 * 50.0, 1e-9);
+  job.begin("denoising", 4.0);     // not planned: part of the direct light's time
+  job.begin("illumination", 6.0);  // the direct light took 5 s: 0.05 s per unit
+  EXPECT_NEAR(*job.seconds_left(0.0, 6.0), 0.05 * 50.0, 1e-9);
+  job.begin("interreflection 1", 16.0);  // the bounce light: 1 s per unit
+  // Its bar half done in 5 s, and at the pace of the illumination: 5 s
+  // more; "interreflection 2" and "rendered back" at 1 s per unit.
+  EXPECT_NEAR(*job.seconds_left(0.5, 21.0), 5.0 + 30.0, 1e-9);
+  // Its bar slower than the illumination went: its own pace.
+  EXPECT_NEAR(*job.seconds_left(0.25, 21.0), 15.0 + 30.0, 1e-9);
+  EXPECT_NEAR(job.fraction_done(0.25, 21.0), 20.0 / (20.0 + 45.0), 1e-9);
+  // Converged early: "interreflection 2" did not run, and only the render
+  // back is to come.
+  job.begin("rendered back", 28.0);  // the bounce light: 22 s for 20 units
+  EXPECT_NEAR(*job.seconds_left(0.0, 28.0), 1.1 * 20.0, 1e-9);
+}
+
 TEST(Rng, SameSeedAndStreamGiveTheSameSequence) {
   Rng a(42, 7, 3), b(42, 7, 3);
   for (int i = 0; i < 1000; ++i) ASSERT_EQ(a.next_u32(), b.next_u32()) << i;

@@ -203,6 +203,55 @@ std::optional<Vec3> photo_exposure_against_the_probes(const Scene& scene, const 
   return k;
 }
 
+// The renders an analysis by path tracing runs, in order, for the time
+// left of the whole (Progress::plan_job): the direct light, then each render
+// of the bounce light. Their work is counted in rays, roughly (the estimate
+// goes by these only until a render of the kind has run, and by the
+// render's own pace once a twentieth of it is done): a direct light sample
+// is one; a path that ends where it meets the photo's radiance is
+// kRaysPerPhotoPath (its first ray, one to a light); a path traced through
+// every bounce kRaysPerFullPath; and each render's filtering, interpolation
+// and division kPixelWork per pixel of the photo.
+constexpr double kRaysPerPhotoPath = 2.0, kRaysPerFullPath = 3.0, kPixelWork = 8.0;
+
+std::vector<JobEstimate::Stage> analysis_stages(const GBuffer& gbuffer, const AnalysisOptions& options,
+                                                const IlluminationOptions& bounce_options, bool photo_radiance,
+                                                int passes) {
+  enum Kind { direct_light, photo_paths, full_paths };
+  const int w = gbuffer.width(), h = gbuffer.height(), s = indirect_stride(bounce_options, w, h);
+  const double pixels = double(w) * h, traced = double((w + s - 1) / s) * double((h + s - 1) / s);
+  const Kind bounce_kind = photo_radiance ? photo_paths : full_paths;
+  const auto render = [&](const std::string& label, Kind kind, int paths) {
+    const double rays = kind == photo_paths ? kRaysPerPhotoPath : kRaysPerFullPath;
+    return JobEstimate::Stage{label, kind, rays * traced * paths + kPixelWork * pixels};
+  };
+  std::vector<JobEstimate::Stage> stages = {
+      {"direct light", direct_light,
+       pixels * (direct_samples_per_pixel(options.paths_per_pixel, gbuffer) + kPixelWork)},
+      render(photo_radiance ? "illumination" : "initial illumination", bounce_kind, bounce_options.paths_per_pixel)};
+  for (int it = 0; options.interreflection && it < passes; ++it)
+    stages.push_back(render("interreflection " + std::to_string(it + 1), bounce_kind, bounce_options.paths_per_pixel));
+  if (photo_radiance)
+    stages.push_back(render("rendered back", full_paths, options.paths_per_pixel));
+  else
+    stages.push_back(render("residual", full_paths, std::max(1, options.paths_per_pixel / kResidualPathsDivisor)));
+  return stages;
+}
+
+// Plans the analysis's stages on `progress` for as long as it lives.
+class PlannedJob {
+ public:
+  PlannedJob(Progress& progress, std::vector<JobEstimate::Stage> stages) : progress_(progress) {
+    progress_.plan_job(std::move(stages));
+  }
+  ~PlannedJob() { progress_.end_job(); }
+  PlannedJob(const PlannedJob&) = delete;
+  PlannedJob& operator=(const PlannedJob&) = delete;
+
+ private:
+  Progress& progress_;
+};
+
 }  // namespace
 
 Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& requested,
@@ -264,6 +313,10 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   const auto render = [&](const SurfaceAlbedo& albedo, const std::string& label) {
     return render_with(albedo, photo_radiance.get(), bounce_options, label);
   };
+  const int passes = photo_radiance ? kPhotoRadiancePasses : options.max_iterations;
+  std::optional<PlannedJob> job;
+  if (!radiosity)
+    job.emplace(progress, analysis_stages(gbuffer, options, bounce_options, bool(photo_radiance), passes));
 
   // photo / illumination; with align_edges, the illumination's edges moved
   // to where the photo shows them (a camera a few pixels off). Moved or not,
@@ -310,7 +363,6 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   // With the photo's radiance one pass puts that albedo on what only the
   // probes show and on the pixels the photo's radiance is not read from;
   // the closing pass then divides the photo in full.
-  const int passes = photo_radiance ? kPhotoRadiancePasses : options.max_iterations;
   for (int it = 0; options.interreflection && it < passes; ++it) {
     const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, bounce, result.albedo.mean, result.albedo.unseen_triangles);
     IlluminationImages illum = render(bounce_albedo, "interreflection " + std::to_string(it + 1));

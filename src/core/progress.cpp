@@ -22,6 +22,10 @@ void Progress::begin(const std::string& label, int64_t total) {
   total_ = total > 0 ? total : 1;
   done_ = 0;
   start_ = last_draw_ = std::chrono::steady_clock::now();
+  {
+    const std::lock_guard lock(job_mutex_);
+    if (job_) job_->begin(label, seconds_since(job_clock_));
+  }
   if (cancelled_) throw Cancelled();
   draw(false);
 }
@@ -45,7 +49,83 @@ void Progress::end() {
 
 double Progress::fraction() const { return double(done_) / double(total_); }
 
-namespace {
+double Progress::seconds_since(std::chrono::steady_clock::time_point t) const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+void Progress::plan_job(std::vector<JobEstimate::Stage> stages) {
+  const std::lock_guard lock(job_mutex_);
+  job_.emplace(std::move(stages));
+  job_clock_ = std::chrono::steady_clock::now();
+}
+
+void Progress::end_job() {
+  const std::lock_guard lock(job_mutex_);
+  job_.reset();
+}
+
+double Progress::job_fraction() const {
+  const std::lock_guard lock(job_mutex_);
+  return job_ ? job_->fraction_done(fraction(), seconds_since(job_clock_)) : fraction();
+}
+
+std::optional<double> Progress::job_seconds_left() const {
+  const std::lock_guard lock(job_mutex_);
+  if (!job_) return std::nullopt;
+  return job_->seconds_left(fraction(), seconds_since(job_clock_));
+}
+
+JobEstimate::JobEstimate(std::vector<Stage> plan) : plan_(std::move(plan)) {}
+
+void JobEstimate::begin(const std::string& label, double t) {
+  int next = current_ + 1;
+  while (next < int(plan_.size()) && plan_[size_t(next)].label != label) ++next;
+  if (next >= int(plan_.size())) return;
+  if (current_ < 0) start_ = t;
+  if (current_ >= 0) took_.push_back(t - stage_start_);
+  took_.resize(size_t(next), -1.0);  // stages passed over
+  current_ = next;
+  stage_start_ = t;
+}
+
+std::optional<double> JobEstimate::pace(int kind) const {
+  double seconds = 0.0, work = 0.0;
+  for (size_t i = 0; i < took_.size(); ++i)
+    if (took_[i] >= 0.0 && (kind < 0 || plan_[i].kind == kind)) {
+      seconds += took_[i];
+      work += plan_[i].work;
+    }
+  if (work <= 0.0) return std::nullopt;
+  return seconds / work;
+}
+
+std::optional<double> JobEstimate::seconds_left(double fraction, double t) const {
+  if (current_ < 0) return std::nullopt;
+  const Stage& stage = plan_[size_t(current_)];
+  const double in_stage = t - stage_start_, f = std::clamp(fraction, 0.0, 1.0);
+  // The current stage's own pace sees its bar only, its kind's the whole
+  // span; the longer of the two.
+  std::optional<double> own_pace;  // seconds per unit of work
+  if (f >= 0.05 && in_stage >= 1.0) own_pace = in_stage / (f * stage.work);
+  const auto any_pace = pace(-1);
+  auto kind_pace = pace(stage.kind);
+  if (!kind_pace && !own_pace) kind_pace = any_pace;
+  if (!own_pace && !kind_pace) return std::nullopt;
+  double left = std::max(own_pace ? *own_pace * stage.work * (1.0 - f) : 0.0,
+                         kind_pace ? *kind_pace * stage.work - in_stage : 0.0);
+  for (size_t i = size_t(current_) + 1; i < plan_.size(); ++i) {
+    const auto p = pace(plan_[i].kind);
+    left += (p ? *p : any_pace ? *any_pace : *own_pace) * plan_[i].work;
+  }
+  return left;
+}
+
+double JobEstimate::fraction_done(double fraction, double t) const {
+  const auto left = seconds_left(fraction, t);
+  if (!left) return 0.0;
+  const double spent = t - start_;
+  return spent + *left > 0.0 ? spent / (spent + *left) : 1.0;
+}
 
 std::string duration_text(double seconds) {
   const int s = int(std::lround(seconds));
@@ -58,8 +138,6 @@ std::string duration_text(double seconds) {
     std::snprintf(text, sizeof text, "%dh%02dm", s / 3600, s / 60 % 60);
   return text;
 }
-
-}  // namespace
 
 std::string progress_line(const std::string& label, double fraction, double elapsed_s) {
   constexpr int kWidth = 30;
@@ -77,8 +155,10 @@ std::string progress_line(const std::string& label, double fraction, double elap
 void Progress::draw(bool final_line) {
   if (!show_) return;
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  std::string line = progress_line(label_, fraction(), secs);
+  if (const auto left = job_seconds_left(); left && !final_line) line += "  (all: ~" + duration_text(*left) + " left)";
   // Padded so that a shorter line wipes the "left" of the one before.
-  std::fprintf(stderr, "\r%-90s%s", progress_line(label_, fraction(), secs).c_str(), final_line ? "\n" : "");
+  std::fprintf(stderr, "\r%-110s%s", line.c_str(), final_line ? "\n" : "");
   std::fflush(stderr);
 }
 

@@ -9,7 +9,7 @@ namespace relight::gui {
 BackgroundTask::BackgroundTask(QObject* parent) : QObject(parent) {
   poll_.setInterval(100);
   connect(&poll_, &QTimer::timeout, this,
-          [this] { emit progressed(int(100.0 * progress_->fraction() + 0.5)); });
+          [this] { emit progressed(int(100.0 * progress_->job_fraction() + 0.5), progress_->job_seconds_left()); });
   connect(&watcher_, &QFutureWatcher<QString>::finished, this, [this] {
     poll_.stop();
     emit finished(watcher_.result());

@@ -10,6 +10,7 @@
 #include <QTimer>
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "core/progress.h"
 
@@ -33,7 +34,9 @@ class BackgroundTask : public QObject {
   void wait();
 
  signals:
-  void progressed(int percent);
+  // percent: of the whole job where it is planned (Progress::plan_job),
+  // else of its current stage; seconds_left: the whole job's, where known.
+  void progressed(int percent, std::optional<double> seconds_left);
   // error: empty on success, "cancelled", or the one-line message of the failure.
   void finished(const QString& error);
 

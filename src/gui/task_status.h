@@ -4,6 +4,7 @@
 #pragma once
 
 #include <QWidget>
+#include <optional>
 
 class QLabel;
 class QProgressBar;
@@ -21,8 +22,11 @@ class TaskStatus : public QWidget {
   void show_task(const QString& label);
 
  private:
+  void show_progress(int percent, std::optional<double> seconds_left);
+
   QLabel* label_;
   QProgressBar* progress_;
+  QLabel* left_;  // the whole task's time left, where known
 };
 
 }  // namespace relight::gui
