@@ -2,6 +2,8 @@
 // interpolated along the surfaces (render_illumination.h): it gives what
 // tracing every pixel gives, and a pole thinner than the stride, on which no
 // traced pixel lies, traces its own rather than taking the floor's light.
+// Along paths kept for light after light (KeptPaths), it gives what tracing
+// each light's own paths gives.
 #include <gtest/gtest.h>
 
 #include "render/render_illumination.h"
@@ -98,6 +100,82 @@ TEST(SparseIndirect, APoleThinnerThanTheStrideTracesItsOwn) {
   floor /= floors;
   EXPECT_LT(dense_pole, 0.9 * floor) << "the pole sees less sky than the floor";
   EXPECT_NEAR(sparse_pole / dense_pole, 1.0, 0.03) << "the floor's light taken for the pole's";
+}
+
+// A closed room around the camera, light bouncing off albedo 0.6: most of
+// a point light's bounce light has bounced more than once.
+struct ClosedRoom {
+  TriangleMesh mesh;
+  RayScene rays;
+  GBuffer gbuffer;
+  UniformAlbedo albedo{Vec3::Constant(0.6f)};
+
+  ClosedRoom() : mesh(make_mesh()), rays(mesh), gbuffer(PoleOnAFloor::camera(), rays, 4, 1, "room") {}
+
+  static TriangleMesh make_mesh() {  // x -2..2, y -1..5, z -1..2, every face's normal inwards
+    TriangleMesh m;
+    add_quad(m, {-2, -1, -1}, {2, -1, -1}, {2, 5, -1}, {-2, 5, -1});  // floor
+    add_quad(m, {-2, -1, 2}, {-2, 5, 2}, {2, 5, 2}, {2, -1, 2});      // ceiling
+    add_quad(m, {-2, 5, -1}, {2, 5, -1}, {2, 5, 2}, {-2, 5, 2});      // back
+    add_quad(m, {-2, -1, -1}, {-2, -1, 2}, {2, -1, 2}, {2, -1, -1});  // front
+    add_quad(m, {-2, -1, -1}, {-2, 5, -1}, {-2, 5, 2}, {-2, -1, 2});  // left
+    add_quad(m, {2, -1, -1}, {2, -1, 2}, {2, 5, 2}, {2, 5, -1});      // right
+    return m;
+  }
+  static Lighting bulb_at(const Vec3& position) {
+    Light bulb;
+    bulb.position = position;
+    bulb.power = 100.0f;
+    bulb.radius = 0.05f;
+    return {{bulb}};
+  }
+};
+
+// KeptPaths: the paths traced once, without lights, then the bounce light of
+// a bulb in one place and another along them gives what tracing the paths
+// for each gives.
+TEST(KeptPaths, GiveEachLightsBounceLightAsTracingItsOwnPathsDoes) {
+  const ClosedRoom room;
+  IlluminationOptions options;
+  options.paths_per_pixel = kPaths;
+  options.indirect_stride = 2;
+  const Integrator unlit(room.rays, Lighting{}, &room.albedo);
+  const KeptPaths kept(room.gbuffer, unlit, options, Progress::silent());
+  EXPECT_GT(kept.bytes(), size_t(kW / 2) * (kH / 2) * kPaths * sizeof(Integrator::PathVertex));  // > 1 vertex a path
+  // Two renders' relative rms difference per pixel, and their means' ratio.
+  const auto compare = [](const Image& a, const Image& b, double& rms) {
+    double a_sum = 0.0, b_sum = 0.0, squared_difference = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      const double u = luminance(a.pixels[i]), v = luminance(b.pixels[i]);
+      a_sum += u;
+      b_sum += v;
+      squared_difference += (u - v) * (u - v);
+    }
+    rms = std::sqrt(squared_difference / double(a.size())) / (b_sum / double(a.size()));
+    return a_sum / b_sum;
+  };
+  for (const Vec3& place : {Vec3(-1.0f, 3.0f, 1.0f), Vec3(1.5f, 1.0f, -0.5f)}) {
+    const Lighting bulb = ClosedRoom::bulb_at(place);
+    const Integrator lit(room.rays, bulb, &room.albedo);
+    const Image traced = render_indirect_part(room.gbuffer, lit, options, Progress::silent());
+    const Image along_kept =
+        render_indirect_part(room.gbuffer, lit, options, Progress::silent(), "illumination", &kept);
+    IlluminationOptions other_seed = options;
+    other_seed.seed = 2;
+    const Image traced_again = render_indirect_part(room.gbuffer, lit, other_seed, Progress::silent());
+    double kept_rms, noise_rms;
+    EXPECT_NEAR(compare(along_kept, traced, kept_rms), 1.0, 0.02) << "bulb at " << place.transpose();
+    compare(traced_again, traced, noise_rms);
+    // As far from the traced render as another seed's: the noise, no more.
+    EXPECT_LT(kept_rms, 1.2 * noise_rms) << "bulb at " << place.transpose();
+    EXPECT_GT(noise_rms, 0.0);
+  }
+  // Paths of another render's pixels are refused, not misread.
+  options.indirect_stride = 3;
+  EXPECT_THROW(
+      render_indirect_part(room.gbuffer, Integrator(room.rays, ClosedRoom::bulb_at(Vec3(0, 2, 0)), &room.albedo),
+                           options, Progress::silent(), "illumination", &kept),
+      std::logic_error);
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 // relight render: the photo under a new rig.
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -84,13 +85,18 @@ void render_frames(const RenderArgs& args, const AnalysedScene& analysed, const 
     const fs::path out = write_relit(frame_file(args.out, frame), image, args.exposure).first;
     const FrameSequence::Stats& after = sequence.stats();
     const int done = frame - frames.first + 1;
-    // The first frame renders the still part too: the time left goes by the others'.
+    // The first frame renders the still part too: the time left goes by the
+    // others' (known from the second frame on).
     if (done == 1) first_frame = seconds_since(frame_start);
-    const double per_frame = done > 1 ? (seconds_since(start) - first_frame) / (done - 1) : first_frame;
-    std::printf("frame %d (%d of %d): %s%d keyed light(s) rendered, %d reused, %.1f s; %s written; about %.0f s left\n",
-                frame, done, count, after.still_renders > before.still_renders ? "the still part and " : "",
+    const std::string left =
+        done == count ? "done"
+        : done == 1
+            ? "the time left follows the next frame"
+            : fmt::format("about {:.0f} s left", (seconds_since(start) - first_frame) / (done - 1) * (count - done));
+    std::printf("frame %d (%d of %d): %s%d keyed light(s) rendered, %d reused, %.1f s; %s written; %s\n", frame, done,
+                count, after.still_renders > before.still_renders ? "the still part and " : "",
                 after.light_renders - before.light_renders, after.light_reuses - before.light_reuses,
-                seconds_since(frame_start), out.c_str(), per_frame * (count - done));
+                seconds_since(frame_start), out.c_str(), left.c_str());
     std::fflush(stdout);
   }
   const FrameSequence::Stats& stats = sequence.stats();

@@ -1,5 +1,6 @@
 #include "relight/frame_sequence.h"
 
+#include <spdlog/spdlog.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -52,9 +53,14 @@ const IlluminationImages& FrameSequence::light_layer(const Light& light, bool mo
   }
   Lighting lighting;
   lighting.lights = {unit_light(light)};
+  if (moving && !kept_paths_) {
+    kept_paths_ = std::make_unique<KeptPaths>(illumination_.keep_paths(analysed_.gbuffer(), moving_options_, progress));
+    spdlog::info("the moving lights' bounce light follows paths kept for the sequence: {:.0f} MB",
+                 double(kept_paths_->bytes()) / (1 << 20));
+  }
   IlluminationImages images =
       illumination_.render(analysed_.gbuffer(), analysed_.scene().camera, lighting, moving ? moving_options_ : options_,
-                           progress, "light " + light.name);
+                           progress, "light " + light.name, true, moving ? kept_paths_.get() : nullptr);
   ++stats_.light_renders;
   lights_.push_back({lighting.lights.front(), moving, std::move(images), calls_});
   return lights_.back().images;

@@ -9,8 +9,10 @@
 //
 // A light the keys move or turn is rendered again in most frames: its
 // bounce light is traced at twice the still render's stride each way (a
-// quarter of the paths; the bounce light of one light is smooth), its
-// direct light at every pixel as always. Every unit image is rendered with
+// quarter of the pixels; the bounce light of one light is smooth), along
+// paths from the camera traced once for the sequence and kept (KeptPaths:
+// only their shadow rays to the light are traced again), its direct light
+// at every pixel as always. Every unit image is rendered with
 // the analysis's seed, so it depends only on the light's geometry and
 // whether it moves: a frame is the same image whichever frames were
 // rendered before it, in this process or another (a render farm's chunks).
@@ -59,6 +61,7 @@ class FrameSequence {
   std::vector<bool> moving_;  // per light of the rig: its keys move or turn it
   std::vector<LightLayer> lights_;
   std::unique_ptr<IlluminationImages> still_;
+  std::unique_ptr<KeptPaths> kept_paths_;  // of the moving lights' bounce light, once one is rendered
   int calls_ = 0;
   Stats stats_;
 };

@@ -74,12 +74,21 @@ Lighting NewIllumination::rig_lighting(const Rig& rig) const {
 
 IlluminationImages NewIllumination::render(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
                                            const RenderOptions& options, Progress& progress, const std::string& label,
-                                           bool first_surface_lights) const {
+                                           bool first_surface_lights, const KeptPaths* kept) const {
   IntegratorOptions integrator_options;
   integrator_options.max_bounces = options.max_bounces;
   integrator_options.first_surface_lights = first_surface_lights;
   const Integrator integrator(analysed_.rays(), lighting, &bounce_albedo_, integrator_options);
-  return render_illumination(gbuffer, camera, integrator, illumination_options(options), progress, label);
+  return render_illumination(gbuffer, camera, integrator, illumination_options(options), progress, label, nullptr,
+                             kept);
+}
+
+KeptPaths NewIllumination::keep_paths(const GBuffer& gbuffer, const RenderOptions& options, Progress& progress) const {
+  IntegratorOptions integrator_options;
+  integrator_options.max_bounces = options.max_bounces;
+  const Lighting none;
+  const Integrator paths(analysed_.rays(), none, &bounce_albedo_, integrator_options);
+  return KeptPaths(gbuffer, paths, illumination_options(options), progress);
 }
 
 IlluminationOptions NewIllumination::illumination_options(const RenderOptions& options) const {

@@ -72,9 +72,14 @@ class NewIllumination {
   // The illumination of the pixels of `gbuffer` (the photo's, or a view's
   // made with `camera`) under `lighting`. first_surface_lights false leaves
   // out the light straight from the lights (see IntegratorOptions).
+  // With `kept` (keep_paths of these options), the bounce light follows
+  // those paths.
   IlluminationImages render(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
                             const RenderOptions& options, Progress& progress, const std::string& label,
-                            bool first_surface_lights = true) const;
+                            bool first_surface_lights = true, const KeptPaths* kept = nullptr) const;
+  // The paths render() with `options` traces the bounce light along, kept
+  // for light after light (KeptPaths).
+  KeptPaths keep_paths(const GBuffer& gbuffer, const RenderOptions& options, Progress& progress) const;
   // The illumination options render() uses with `options`.
   IlluminationOptions illumination_options(const RenderOptions& options) const;
   // The radiance of `lighting`'s environment behind each pixel's background

@@ -98,14 +98,16 @@ Vec3 Integrator::direct_light(const SurfacePoint& p, Rng& rng) const {
   return options_.first_surface_lights ? from_lights(p, rng) : Vec3::Zero();
 }
 
-Vec3 Integrator::indirect_light(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce) const {
+template <class LightsAt>
+Vec3 Integrator::follow_path(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce,
+                             const LightsAt& lights_at) const {
   const Environment& env = lighting_.environment;
   Vec3 result = Vec3::Zero();
   Vec3 throughput = Vec3::Ones();
   SurfacePoint p = start;
   for (int bounce = 0;; ++bounce) {
     const ProbeEnvironment* probe = env.uses_probes() ? env.probe_for(p.position) : nullptr;
-    if (bounce > 0) result += throughput.cwiseProduct(from_lights(p, rng));
+    if (bounce > 0) result += lights_at(p, throughput);
     result += throughput.cwiseProduct(from_environment(p, probe, rng));
 
     // The last bounce's ray can only bring the environment (its MIS half):
@@ -139,6 +141,29 @@ Vec3 Integrator::indirect_light(const SurfacePoint& start, Rng& rng, const Vec2*
     p = next;
   }
   return result;
+}
+
+Vec3 Integrator::indirect_light(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce) const {
+  return follow_path(start, rng, first_bounce, [&](const SurfacePoint& p, const Vec3& throughput) -> Vec3 {
+    return throughput.cwiseProduct(from_lights(p, rng));
+  });
+}
+
+Vec3 Integrator::bounce_vertices(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce,
+                                 std::vector<PathVertex>& out) const {
+  return follow_path(start, rng, first_bounce, [&](const SurfacePoint& p, const Vec3& throughput) -> Vec3 {
+    out.push_back({p.position, p.normal, p.geometric_normal, p.lift, throughput});
+    return Vec3::Zero();
+  });
+}
+
+Vec3 Integrator::light_at_vertex(const PathVertex& v, Rng& rng) const {
+  SurfacePoint p;
+  p.position = v.position;
+  p.normal = v.normal;
+  p.geometric_normal = v.geometric_normal;
+  p.lift = v.lift;
+  return v.throughput.cwiseProduct(from_lights(p, rng));
 }
 
 }  // namespace relight

@@ -105,6 +105,22 @@ class Integrator {
     return d + i;
   }
 
+  // indirect_light in two steps, for light after light along the same
+  // paths (KeptPaths): bounce_vertices follows the path as indirect_light
+  // does and keeps the vertices after its first surface, each with the
+  // weight the light reaching it counts with; it returns the rest of the
+  // light (the environment, known radiance) and leaves the lights out.
+  // light_at_vertex is then the lights' share at one such vertex, as
+  // indirect_light adds it there. The vertices do not depend on the lights.
+  struct PathVertex {
+    Vec3 position, normal, geometric_normal;
+    float lift;
+    Vec3 throughput;
+  };
+  Vec3 bounce_vertices(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce,
+                       std::vector<PathVertex>& out) const;
+  Vec3 light_at_vertex(const PathVertex& vertex, Rng& rng) const;
+
   // Whether every path's light is 0: no light lit, a black environment and
   // no known radiance.
   bool is_dark() const {
@@ -127,6 +143,10 @@ class Integrator {
   // their number.
   Vec3 from_pooled_lights(const SurfacePoint& p, Rng& rng) const;
   Vec3 from_environment(const SurfacePoint& p, const ProbeEnvironment* probe, Rng& rng) const;
+  // One path from `start`: the environment and known radiance it meets,
+  // plus lights_at(vertex, throughput) at each vertex after the first.
+  template <class LightsAt>
+  Vec3 follow_path(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce, const LightsAt& lights_at) const;
 
   const RayScene& scene_;
   const Lighting& lighting_;

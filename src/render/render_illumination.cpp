@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace relight {
 
@@ -10,7 +11,7 @@ namespace {
 
 // Each part draws its own random numbers at a pixel, so that the noise of
 // one does not depend on how many the other drew.
-constexpr uint64_t kPhotoStream = 0, kDirectStream = 1, kIndirectStream = 2;
+constexpr uint64_t kPhotoStream = 0, kDirectStream = 1, kIndirectStream = 2, kKeptPathStream = 3;
 
 struct PixelEstimate {
   Vec3 mean = Vec3::Zero();
@@ -49,13 +50,21 @@ PixelEstimate estimate_pixel(const GBuffer& g, int x, int y, int paths_per_pixel
 }
 
 // The environment and interreflection at a pixel: its paths' first bounces
-// a randomly shifted Hammersley set, spread over the hemisphere evenly.
-PixelEstimate estimate_indirect(const GBuffer& g, int x, int y, const Integrator& integrator, int paths,
-                                uint64_t seed) {
+// a randomly shifted Hammersley set, spread over the hemisphere evenly;
+// path(surface, rng, first_bounce) follows one.
+template <class Path>
+PixelEstimate estimate_paths(const GBuffer& g, int x, int y, int paths, uint64_t seed, const Path& path) {
   Rng rng(seed, size_t(y) * g.width() + x, kIndirectStream);
   const Vec2 shift = rng.uniform2();
   return estimate_pixel(g, x, y, paths, rng, [&](const SurfacePoint& p, int i, int n, Rng& r) {
     const Vec2 first_bounce = shifted(hammersley(i, n), shift);
+    return path(p, r, first_bounce);
+  });
+}
+
+PixelEstimate estimate_indirect(const GBuffer& g, int x, int y, const Integrator& integrator, int paths,
+                                uint64_t seed) {
+  return estimate_paths(g, x, y, paths, seed, [&](const SurfacePoint& p, Rng& r, const Vec2& first_bounce) {
     return integrator.indirect_light(p, r, &first_bounce);
   });
 }
@@ -216,10 +225,69 @@ Image render_direct_part(const GBuffer& g, const Integrator& integrator, const I
   return denoise_illumination(image, std::move(variance), g, direct_options);
 }
 
+KeptPaths::KeptPaths(const GBuffer& g, const Integrator& paths, const IlluminationOptions& options, Progress& progress)
+    : stride_(indirect_stride(options, g.width(), g.height())), seed_(options.seed) {
+  const SparseGrid grid(g, stride_);
+  width_ = grid.width;
+  rows_.resize(size_t(grid.height));
+  progress.begin("tracing the paths kept for the moving lights", grid.height);
+  tbb::parallel_for(0, grid.height, [&](int j) {
+    Row& row = rows_[size_t(j)];
+    for (int i = 0; i < grid.width; ++i) {
+      const int x = grid.xs[i], y = grid.ys[j];
+      if (g.coverage(x, y) > 0.0f)
+        estimate_paths(g, x, y, options.paths_per_pixel, options.seed,
+                       [&](const SurfacePoint& p, Rng& r, const Vec2& first_bounce) {
+                         paths.bounce_vertices(p, r, &first_bounce, row.vertices);
+                         row.path_end.push_back(uint32_t(row.vertices.size()));
+                         return Vec3::Zero();
+                       });
+      row.pixel_end.push_back(uint32_t(row.path_end.size()));
+    }
+    row.vertices.shrink_to_fit();  // a vector grows by up to twice what it holds
+    row.path_end.shrink_to_fit();
+    progress.advance();
+  });
+  progress.end();
+}
+
+size_t KeptPaths::bytes() const {
+  size_t bytes = 0;
+  for (const Row& row : rows_)
+    bytes += row.vertices.size() * sizeof(Integrator::PathVertex) +
+             (row.path_end.size() + row.pixel_end.size()) * sizeof(uint32_t);
+  return bytes;
+}
+
+Vec3 KeptPaths::light(size_t pixel, const Integrator& lights, float& variance) const {
+  const Row& row = rows_[pixel / size_t(width_)];
+  const size_t i = pixel % size_t(width_);
+  const uint32_t first_path = i ? row.pixel_end[i - 1] : 0, paths = row.pixel_end[i] - first_path;
+  variance = 0.0f;
+  if (!paths) return Vec3::Zero();
+  Rng rng(seed_, pixel, kKeptPathStream);
+  Vec3 sum = Vec3::Zero();
+  double lum_sum = 0.0, lum_sq_sum = 0.0;
+  for (uint32_t k = first_path; k < first_path + paths; ++k) {
+    Vec3 v = Vec3::Zero();
+    for (uint32_t n = k ? row.path_end[k - 1] : 0; n < row.path_end[k]; ++n)
+      v += lights.light_at_vertex(row.vertices[n], rng);
+    sum += v;
+    const double l = luminance(v);
+    lum_sum += l;
+    lum_sq_sum += l * l;
+  }
+  const double mean = lum_sum / paths;
+  variance = float(std::max(0.0, lum_sq_sum / paths - mean * mean) / paths);
+  return sum / float(paths);
+}
+
 Image render_indirect_part(const GBuffer& g, const Integrator& integrator, const IlluminationOptions& options,
-                           Progress& progress, const std::string& label) {
+                           Progress& progress, const std::string& label, const KeptPaths* kept) {
   const int w = g.width(), h = g.height();
   const int stride = indirect_stride(options, w, h);
+  if (kept && (kept->stride() != stride || kept->seed() != options.seed))
+    throw std::logic_error("render_indirect_part: the kept paths are of another render's pixels");
   const SparseGrid grid(g, stride);
   Image traced(grid.width, grid.height);
   std::vector<float> variance(traced.size(), 0.0f);
@@ -227,10 +295,15 @@ Image render_indirect_part(const GBuffer& g, const Integrator& integrator, const
   tbb::parallel_for(0, grid.height, [&](int j) {
     for (int i = 0; i < grid.width; ++i) {
       const int x = grid.xs[i], y = grid.ys[j];
+      const size_t k = size_t(j) * grid.width + i;
       if (g.coverage(x, y) <= 0.0f) continue;
+      if (kept) {
+        traced.pixels[k] = kept->light(k, integrator, variance[k]);
+        continue;
+      }
       const PixelEstimate e = estimate_indirect(g, x, y, integrator, options.paths_per_pixel, options.seed);
-      traced.pixels[size_t(j) * grid.width + i] = e.mean;
-      variance[size_t(j) * grid.width + i] = e.variance;
+      traced.pixels[k] = e.mean;
+      variance[k] = e.variance;
     }
     progress.advance();
   });
@@ -293,13 +366,13 @@ IlluminationParts render_illumination_parts(const GBuffer& gbuffer, const Integr
 
 IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                                        const IlluminationOptions& options, Progress& progress, const std::string& label,
-                                       const Image* direct) {
+                                       const Image* direct, const KeptPaths* kept) {
   // Nothing to light with (a rig of lights switched off, no environment):
   // no path needs tracing.
   if (integrator.is_dark()) return {Image(gbuffer.width(), gbuffer.height()), Image(gbuffer.width(), gbuffer.height())};
   IlluminationParts parts{
       direct ? *direct : render_direct_part(gbuffer, integrator, options, progress, label + ": direct light"),
-      render_indirect_part(gbuffer, integrator, options, progress, label)};
+      render_indirect_part(gbuffer, integrator, options, progress, label, kept)};
   return {parts.total(), render_background(gbuffer, camera, integrator)};
 }
 
