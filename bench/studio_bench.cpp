@@ -4,17 +4,23 @@
 // QPainter). On the reference scene `bookcase` where ../shared/scenes holds
 // it (RELIGHT_SCENES overrides), else on the example room. And a new sky
 // turned through the document, as the sky strip's drag does, on the outdoor
-// scene. Offscreen: no display needed. Results: docs/benchmarks.md,
+// scene. And a light dragged while a full analysis runs behind the
+// picture. Offscreen: no display needed. Results: docs/benchmarks.md,
 // "relight studio".
 #include <benchmark/benchmark.h>
 
 #include <QApplication>
 #include <QImage>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <thread>
 
 #include "analysis/strategy.h"
+#include "core/background_work.h"
+#include "core/error.h"
 #include "core/statistics.h"
 #include "gui/geometry_view.h"
 #include "gui/sky_strip.h"
@@ -110,6 +116,69 @@ void BM_TurnTheSkyInTheStudio(benchmark::State& state) {
   state.counters["p95_ms"] = percentile(ms, 0.95);
 }
 BENCHMARK(BM_TurnTheSkyInTheStudio)->Iterations(30)->MeasureProcessCPUTime()->UseManualTime()->Unit(benchmark::kMillisecond);
+
+// Dragging the scene's first light at 1280x720 (CPU backend, the window's
+// frame as the document gives it) alone (0), and while a full analysis of
+// the same scene runs behind the picture, as the full analysis after a
+// large photo's preview does: on a thread like any other (1), and given
+// way as BackgroundTask runs it (2). Counters: the drag's median and 95th
+// percentile frame time, and how many analyses were done meanwhile.
+void BM_DragWhileAnalysing(benchmark::State& state) {
+  static const std::shared_ptr<StudioScene> scene = bench_scene();
+  const Scene& photo_scene = scene->analysed->scene();
+  SessionOptions options;
+  options.backend = Backend::cpu;
+  options.width = 1280;
+  options.height = 720;
+  const Rig rig = rig_from_scene(photo_scene);
+  LightingDocument document(scene, rig, options);
+  document.session().wait_for_edit(1);
+
+  Progress analysis_progress(false);
+  std::atomic<int> analyses{0};
+  const auto analyse = [&] {
+    try {
+      while (true) {
+        AnalysedScene::analyse(Scene(photo_scene), AnalysisOptions{}, analysis_progress);
+        ++analyses;
+      }
+    } catch (const Cancelled&) {
+    }
+  };
+  const int mode = int(state.range(0));
+  std::thread behind;
+  if (mode == 1) behind = std::thread(analyse);
+  if (mode == 2) behind = std::thread([&] { run_giving_way(analyse); });
+  if (mode) std::this_thread::sleep_for(std::chrono::seconds(2));  // into its renders
+
+  std::vector<double> ms;
+  int step = 0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    Light light = rig.lights.front();
+    light.position += 0.3f * Vec3(std::cos(0.1f * float(step)), std::sin(0.1f * float(step)), 0.0f);
+    ++step;
+    document.set_light(0, light);
+    const Frame frame = document.session().wait_for_edit(document.session().last_edit());
+    benchmark::DoNotOptimize(to_qimage(*frame.image, 0.0f));
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    state.SetIterationTime(secs);
+    ms.push_back(1e3 * secs);
+  }
+  const double analysed = analyses + analysis_progress.job_fraction();
+  analysis_progress.cancel();
+  if (behind.joinable()) behind.join();
+  state.counters["median_ms"] = percentile(ms, 0.5);
+  state.counters["p95_ms"] = percentile(ms, 0.95);
+  state.counters["analyses_done"] = analysed;
+  state.SetLabel(mode == 0 ? "no analysis behind" : mode == 1 ? "analysis on a plain thread" : "analysis giving way");
+}
+BENCHMARK(BM_DragWhileAnalysing)
+    ->DenseRange(0, 2)
+    ->Iterations(120)
+    ->MeasureProcessCPUTime()
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

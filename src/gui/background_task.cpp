@@ -2,11 +2,13 @@
 
 #include <QtConcurrent/QtConcurrentRun>
 
+#include "core/background_work.h"
 #include "core/error.h"
 
 namespace relight::gui {
 
 BackgroundTask::BackgroundTask(QObject* parent) : QObject(parent) {
+  pool_.setMaxThreadCount(1);
   poll_.setInterval(100);
   connect(&poll_, &QTimer::timeout, this,
           [this] { emit progressed(int(100.0 * progress_->job_fraction() + 0.5), progress_->job_seconds_left()); });
@@ -25,9 +27,9 @@ bool BackgroundTask::start(Work work) {
   if (running()) return false;
   progress_ = std::make_unique<Progress>(false);
   Progress* progress = progress_.get();
-  watcher_.setFuture(QtConcurrent::run([work = std::move(work), progress]() -> QString {
+  watcher_.setFuture(QtConcurrent::run(&pool_, [work = std::move(work), progress]() -> QString {
     try {
-      work(*progress);
+      run_giving_way([&] { work(*progress); });
       return {};
     } catch (const Cancelled&) {
       return QStringLiteral("cancelled");

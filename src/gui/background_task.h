@@ -1,5 +1,6 @@
 // BackgroundTask: long work (analysing a scene, the final render of an
-// export) on a QtConcurrent worker, with its progress polled for a progress
+// export) on a worker thread of its own that gives way to the interactive
+// picture (run_giving_way, core/background_work.h), with its progress polled for a progress
 // bar and a cancel that the work sees at its next progress step. Results
 // come back as values: `finished` carries an empty string or the error.
 #pragma once
@@ -7,6 +8,7 @@
 #include <QFutureWatcher>
 #include <QObject>
 #include <QString>
+#include <QThreadPool>
 #include <QTimer>
 #include <functional>
 #include <memory>
@@ -42,6 +44,7 @@ class BackgroundTask : public QObject {
 
  private:
   std::unique_ptr<Progress> progress_;
+  QThreadPool pool_;  // one thread, given way (run_giving_way, core/background_work.h)
   QFutureWatcher<QString> watcher_;
   QTimer poll_;
 };
