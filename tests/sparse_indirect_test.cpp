@@ -139,7 +139,8 @@ TEST(KeptPaths, GiveEachLightsBounceLightAsTracingItsOwnPathsDoes) {
   IlluminationOptions options;
   options.paths_per_pixel = kPaths;
   options.indirect_stride = 2;
-  const Integrator unlit(room.rays, Lighting{}, &room.albedo);
+  const Lighting no_lights;  // the integrator keeps a reference
+  const Integrator unlit(room.rays, no_lights, &room.albedo);
   const KeptPaths kept(room.gbuffer, unlit, options, Progress::silent());
   EXPECT_GT(kept.bytes(), size_t(kW / 2) * (kH / 2) * kPaths * sizeof(Integrator::PathVertex));  // > 1 vertex a path
   // Two renders' relative rms difference per pixel, and their means' ratio.
@@ -170,6 +171,15 @@ TEST(KeptPaths, GiveEachLightsBounceLightAsTracingItsOwnPathsDoes) {
     EXPECT_LT(kept_rms, 1.2 * noise_rms) << "bulb at " << place.transpose();
     EXPECT_GT(noise_rms, 0.0);
   }
+  // Paths that would take more than their budget are not kept.
+  const KeptPaths over(room.gbuffer, unlit, options, Progress::silent(), kept.bytes() / 2);
+  EXPECT_FALSE(over.within_budget());
+  EXPECT_LE(over.bytes(), kept.bytes() / 2);
+  EXPECT_THROW(
+      render_indirect_part(room.gbuffer, Integrator(room.rays, ClosedRoom::bulb_at(Vec3(0, 2, 0)), &room.albedo),
+                           options, Progress::silent(), "illumination", &over),
+      std::logic_error);
+  EXPECT_TRUE(kept.within_budget());
   // Paths of another render's pixels are refused, not misread.
   options.indirect_stride = 3;
   EXPECT_THROW(

@@ -53,10 +53,19 @@ const IlluminationImages& FrameSequence::light_layer(const Light& light, bool mo
   }
   Lighting lighting;
   lighting.lights = {unit_light(light)};
-  if (moving && !kept_paths_) {
+  if (moving && !kept_paths_tried_) {
+    kept_paths_tried_ = true;
     kept_paths_ = std::make_unique<KeptPaths>(illumination_.keep_paths(analysed_.gbuffer(), moving_options_, progress));
-    spdlog::info("the moving lights' bounce light follows paths kept for the sequence: {:.0f} MB",
-                 double(kept_paths_->bytes()) / (1 << 20));
+    if (kept_paths_->within_budget()) {
+      spdlog::info("the moving lights' bounce light follows paths kept for the sequence: {:.0f} MB",
+                   double(kept_paths_->bytes()) / (1 << 20));
+    } else {
+      kept_paths_.reset();
+      spdlog::info(
+          "the paths of the moving lights' bounce light would take over {:.0f} MB to keep: each frame "
+          "traces its own",
+          double(KeptPaths::kDefaultBudget) / (1 << 20));
+    }
   }
   IlluminationImages images =
       illumination_.render(analysed_.gbuffer(), analysed_.scene().camera, lighting, moving ? moving_options_ : options_,

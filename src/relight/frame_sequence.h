@@ -61,7 +61,10 @@ class FrameSequence {
   std::vector<bool> moving_;  // per light of the rig: its keys move or turn it
   std::vector<LightLayer> lights_;
   std::unique_ptr<IlluminationImages> still_;
-  std::unique_ptr<KeptPaths> kept_paths_;  // of the moving lights' bounce light, once one is rendered
+  // The moving lights' bounce light's paths, kept once one is rendered
+  // where they fit KeptPaths' budget.
+  std::unique_ptr<KeptPaths> kept_paths_;
+  bool kept_paths_tried_ = false;
   int calls_ = 0;
   Stats stats_;
 };

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -225,13 +226,16 @@ Image render_direct_part(const GBuffer& g, const Integrator& integrator, const I
   return denoise_illumination(image, std::move(variance), g, direct_options);
 }
 
-KeptPaths::KeptPaths(const GBuffer& g, const Integrator& paths, const IlluminationOptions& options, Progress& progress)
+KeptPaths::KeptPaths(const GBuffer& g, const Integrator& paths, const IlluminationOptions& options, Progress& progress,
+                     size_t budget_bytes)
     : stride_(indirect_stride(options, g.width(), g.height())), seed_(options.seed) {
   const SparseGrid grid(g, stride_);
   width_ = grid.width;
   rows_.resize(size_t(grid.height));
+  std::atomic<size_t> kept_bytes{0};
   progress.begin("tracing the paths kept for the moving lights", grid.height);
   tbb::parallel_for(0, grid.height, [&](int j) {
+    if (kept_bytes > budget_bytes) return;  // over: the rest need not be traced
     Row& row = rows_[size_t(j)];
     for (int i = 0; i < grid.width; ++i) {
       const int x = grid.xs[i], y = grid.ys[j];
@@ -246,9 +250,15 @@ KeptPaths::KeptPaths(const GBuffer& g, const Integrator& paths, const Illuminati
     }
     row.vertices.shrink_to_fit();  // a vector grows by up to twice what it holds
     row.path_end.shrink_to_fit();
+    kept_bytes += row.vertices.size() * sizeof(Integrator::PathVertex) +
+                  (row.path_end.size() + row.pixel_end.size()) * sizeof(uint32_t);
     progress.advance();
   });
   progress.end();
+  if (kept_bytes > budget_bytes) {
+    within_budget_ = false;
+    rows_.clear();
+  }
 }
 
 size_t KeptPaths::bytes() const {
@@ -286,8 +296,8 @@ Image render_indirect_part(const GBuffer& g, const Integrator& integrator, const
                            Progress& progress, const std::string& label, const KeptPaths* kept) {
   const int w = g.width(), h = g.height();
   const int stride = indirect_stride(options, w, h);
-  if (kept && (kept->stride() != stride || kept->seed() != options.seed))
-    throw std::logic_error("render_indirect_part: the kept paths are of another render's pixels");
+  if (kept && (!kept->within_budget() || kept->stride() != stride || kept->seed() != options.seed))
+    throw std::logic_error("render_indirect_part: the kept paths are of another render's pixels, or incomplete");
   const SparseGrid grid(g, stride);
   Image traced(grid.width, grid.height);
   std::vector<float> variance(traced.size(), 0.0f);

@@ -77,12 +77,18 @@ IlluminationParts render_illumination_parts(const GBuffer& gbuffer, const Integr
 // the lights, only where its vertices' shadow rays go: the paths a render
 // with `options` traces are traced once, with `paths`' albedo and bounces,
 // and kept; each light then costs a shadow ray a vertex
-// (render_indirect_part's `kept`), the same light in expectation. About 52
-// bytes a vertex: ~1 GB for the 77 000 pixels a 640 x 480 view traces at
-// stride 2, 64 paths each, in a closed room.
+// (render_indirect_part's `kept`), the same light in expectation. 52 bytes
+// a vertex: 591 MB for the 77 000 pixels the studio's 640 x 480 view traces
+// at stride 2, 64 paths each. Paths in a closed room of bright walls are
+// long; where they would take more than `budget_bytes` in all, the tracing
+// stops there and within_budget() is false (the caller traces each light's
+// own paths instead).
 class KeptPaths {
  public:
-  KeptPaths(const GBuffer& gbuffer, const Integrator& paths, const IlluminationOptions& options, Progress& progress);
+  static constexpr size_t kDefaultBudget = size_t(2) << 30;
+  KeptPaths(const GBuffer& gbuffer, const Integrator& paths, const IlluminationOptions& options, Progress& progress,
+            size_t budget_bytes = kDefaultBudget);
+  bool within_budget() const { return within_budget_; }
   int stride() const { return stride_; }
   uint64_t seed() const { return seed_; }
   size_t bytes() const;
@@ -99,6 +105,7 @@ class KeptPaths {
   };
   int stride_, width_ = 0;
   uint64_t seed_;
+  bool within_budget_ = true;
   std::vector<Row> rows_;
 };
 
