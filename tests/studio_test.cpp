@@ -582,6 +582,32 @@ class StudioTest : public QObject {
     QVERIFY(window_->last_error().contains("scene.json"));
   }
 
+  // An animated rig's lights are edited as the rig gives them outside their
+  // keys: the list and the status bar say so, and a saved rig keeps the keys.
+  void an_animated_rig_is_edited_outside_its_keys_and_saved_with_them() {
+    Rig animated = load_rig(evening_.toStdString());
+    LightKey first, last;
+    first.frame = 1;
+    first.power = 10.0f;
+    last.frame = 24;
+    last.power = 90.0f;
+    animated.lights[0].keys = {first, last};
+    const QString path = folder_.filePath("animated.json");
+    std::ofstream(path.toStdString()) << rig_to_json(animated);
+    QVERIFY(window_->open_rig(path));
+    QVERIFY(window_->statusBar()->currentMessage().contains("1 of the rig's lights animated"));
+    const QString row = window_->light_model().data(window_->light_model().index(0), Qt::DisplayRole).toString();
+    QVERIFY2(row.endsWith("animated (2 keys)"), qPrintable(row));
+    window_->select_light(0);
+    QTest::keyClick(&window_->geometry_view(), Qt::Key_Up);
+    const QString saved = folder_.filePath("animated_saved.json");
+    QVERIFY(window_->save_rig(saved));
+    const Rig back = load_rig(saved.toStdString());
+    QCOMPARE(back.lights[0].keys.size(), size_t(2));
+    EXPECT_EXACT(*back.lights[0].keys[1].power, 90.0f);
+    EXPECT_EXACT(back.lights[0].position.z(), document().light(0).position.z());
+  }
+
   // Undoing every edit made since a save is back at the saved rig: the
   // window says so. A run of key moves that a save interrupts is two undo
   // steps, so that undo can stop at what was saved.

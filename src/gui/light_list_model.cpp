@@ -49,9 +49,17 @@ QIcon eye_icon(bool open, const QColor& iris) {
 
 QString light_summary(const Light& light) {
   const QString name = QString::fromStdString(light.name);
-  if (light.type == LightType::directional)
-    return QStringLiteral("%1 \u2014 sun, %2 W/m\u00b2").arg(name).arg(double(light.irradiance), 0, 'g', 4);
-  return QStringLiteral("%1 \u2014 %2, %3 W").arg(name, type_name(light.type)).arg(double(light.power), 0, 'g', 4);
+  const QString summary =
+      light.type == LightType::directional
+          ? QStringLiteral("%1 \u2014 sun, %2 W/m\u00b2").arg(name).arg(double(light.irradiance), 0, 'g', 4)
+          : QStringLiteral("%1 \u2014 %2, %3 W").arg(name, type_name(light.type)).arg(double(light.power), 0, 'g', 4);
+  return light.keys.empty() ? summary : QStringLiteral("%1, animated (%2 keys)").arg(summary).arg(light.keys.size());
+}
+
+QString animated_light_note() {
+  return QStringLiteral(
+      "Animated: shown and edited here as the rig gives it outside its keys; its keys are kept when the rig is "
+      "saved, and `relight render --frames` renders them (frame by frame, the keys decide)");
 }
 
 LightListModel::LightListModel(QObject* parent) : QAbstractListModel(parent) {}
@@ -100,9 +108,12 @@ QVariant LightListModel::data(const QModelIndex& index, int role) const {
       return eye_icon(light.enabled, display_colour(light.color));
     case Qt::CheckStateRole:
       return light.enabled ? Qt::Checked : Qt::Unchecked;
-    case Qt::ToolTipRole:
-      return light.enabled ? QStringLiteral("Shown: untick to switch the light off (it stays in the rig)")
-                           : QStringLiteral("Switched off: tick to show it again");
+    case Qt::ToolTipRole: {
+      QString tip = light.enabled ? QStringLiteral("Shown: untick to switch the light off (it stays in the rig)")
+                                  : QStringLiteral("Switched off: tick to show it again");
+      if (!light.keys.empty()) tip += QStringLiteral(".\n") + animated_light_note();
+      return tip;
+    }
     default:
       return {};
   }

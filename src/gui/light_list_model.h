@@ -20,6 +20,8 @@ QIcon eye_icon(bool open, const QColor& iris);
 
 // "lamp — point, 250 W" / "sun — sun, 3 W/m²".
 QString light_summary(const Light& light);
+// What relight studio does with an animated light (one with keys).
+QString animated_light_note();
 
 class LightListModel : public QAbstractListModel {
   Q_OBJECT

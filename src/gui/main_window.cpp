@@ -378,6 +378,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   select_light(document_->light_count() > 0 ? 0 : -1);
   remember(kRecentScenes, scene_path);
   if (!rig_path_.isEmpty()) remember(kRecentRigs, rig_path_);
+  note_animation(rig);
   geometry_view().setFocus();
   update_actions();
   update_title();
@@ -400,6 +401,13 @@ void MainWindow::show_analysis() {
     statusBar()->showMessage(QString::fromStdString(document_->session().backend_note()), 8000);
 }
 
+void MainWindow::note_animation(const Rig& rig) {
+  const auto animated =
+      std::count_if(rig.lights.begin(), rig.lights.end(), [](const Light& l) { return !l.keys.empty(); });
+  if (animated)
+    statusBar()->showMessage(tr("%1 of the rig's lights animated. %2").arg(animated).arg(animated_light_note()), 15000);
+}
+
 bool MainWindow::open_rig(const QString& path) {
   if (!document_) return false;
   try {
@@ -409,6 +417,7 @@ bool MainWindow::open_rig(const QString& path) {
     rig_path_ = path;
     remember(kRecentRigs, path);
     update_title();
+    note_animation(rig);
     return true;
   } catch (const InputError& e) {
     show_error(QString::fromStdString(e.what()));

@@ -130,6 +130,9 @@ class MainWindow : public QMainWindow {
   // The open analysis on screen: the photo, its geometry's edges, and what
   // the status bar says of it.
   void show_analysis();
+  // Says in the status bar what relight studio does with the rig's animated
+  // lights, where it has any.
+  void note_animation(const Rig& rig);
   SessionOptions session_options_for(const StudioScene& scene) const;
   // Analyses the open scene in full on a worker and puts it in the
   // preview's place under the same document: the design, the selection and
