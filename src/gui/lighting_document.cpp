@@ -98,7 +98,6 @@ void LightingDocument::replace_scene(std::shared_ptr<const StudioScene> scene, c
   // The new session before the old scene goes: the old session reads it.
   session_ = std::make_unique<RelightSession>(*scene->analysed, shown_rig(), options);
   scene_ = std::move(scene);
-  emit sceneReplaced();
 }
 
 }  // namespace relight::gui

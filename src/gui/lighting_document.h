@@ -77,7 +77,6 @@ class LightingDocument : public QObject {
   void environmentScaleChanged(float scale);
   void skyChanged();
   void rigReset();
-  void sceneReplaced();
   void soloChanged(int index);
 
  private:

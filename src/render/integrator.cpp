@@ -149,9 +149,9 @@ Vec3 Integrator::indirect_light(const SurfacePoint& start, Rng& rng, const Vec2*
   });
 }
 
-Vec3 Integrator::bounce_vertices(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce,
+void Integrator::bounce_vertices(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce,
                                  std::vector<PathVertex>& out) const {
-  return follow_path(start, rng, first_bounce, [&](const SurfacePoint& p, const Vec3& throughput) -> Vec3 {
+  follow_path(start, rng, first_bounce, [&](const SurfacePoint& p, const Vec3& throughput) -> Vec3 {
     out.push_back({p.position, p.normal, p.geometric_normal, p.lift, throughput});
     return Vec3::Zero();
   });

@@ -108,8 +108,8 @@ class Integrator {
   // indirect_light in two steps, for light after light along the same
   // paths (KeptPaths): bounce_vertices follows the path as indirect_light
   // does and keeps the vertices after its first surface, each with the
-  // weight the light reaching it counts with; it returns the rest of the
-  // light (the environment, known radiance) and leaves the lights out.
+  // weight the light reaching it counts with (the environment and known
+  // radiance the path meets are not kept: the paths serve lights alone).
   // light_at_vertex is then the lights' share at one such vertex, as
   // indirect_light adds it there. The vertices do not depend on the lights.
   struct PathVertex {
@@ -117,7 +117,7 @@ class Integrator {
     float lift;
     Vec3 throughput;
   };
-  Vec3 bounce_vertices(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce,
+  void bounce_vertices(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce,
                        std::vector<PathVertex>& out) const;
   Vec3 light_at_vertex(const PathVertex& vertex, Rng& rng) const;
 

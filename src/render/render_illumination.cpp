@@ -19,6 +19,33 @@ struct PixelEstimate {
   float variance = 0.0f;  // of the mean's luminance
 };
 
+// A pixel's estimates summed: their mean, and the variance of that mean's
+// luminance (which the denoiser weighs by).
+class EstimateSum {
+ public:
+  void add(const Vec3& v) {
+    sum_ += v;
+    const double l = luminance(v);
+    lum_sum_ += l;
+    lum_sq_sum_ += l * l;
+    ++n_;
+  }
+  PixelEstimate estimate() const {
+    PixelEstimate e;
+    if (n_) {
+      e.mean = sum_ / float(n_);
+      const double mean = lum_sum_ / n_;
+      e.variance = float(std::max(0.0, lum_sq_sum_ / n_ - mean * mean) / n_);
+    }
+    return e;
+  }
+
+ private:
+  Vec3 sum_ = Vec3::Zero();
+  double lum_sum_ = 0.0, lum_sq_sum_ = 0.0;
+  int n_ = 0;
+};
+
 // The mean of max(paths_per_pixel, sub-samples) estimates spread evenly over
 // the pixel's sub-samples, over those that see geometry:
 // estimate(surface, path, paths, rng) gives one.
@@ -28,26 +55,12 @@ PixelEstimate estimate_pixel(const GBuffer& g, int x, int y, int paths_per_pixel
   const int paths = std::max(paths_per_pixel, spp);
   thread_local std::vector<GBufferSample> samples;  // fetched once: most are recomputed when asked for
   g.pixel_samples(x, y, samples);
-  Vec3 sum = Vec3::Zero();
-  double lum_sum = 0.0, lum_sq_sum = 0.0;
-  int n = 0;
+  EstimateSum sum;
   for (int i = 0; i < paths; ++i) {
     const GBufferSample s = samples[size_t(i % spp)];
-    if (!s.hit) continue;
-    const Vec3 v = estimate(s.surface, i, paths, rng);
-    sum += v;
-    const double l = luminance(v);
-    lum_sum += l;
-    lum_sq_sum += l * l;
-    ++n;
+    if (s.hit) sum.add(estimate(s.surface, i, paths, rng));
   }
-  PixelEstimate e;
-  if (n) {
-    e.mean = sum / float(n);
-    const double mean = lum_sum / n;
-    e.variance = float(std::max(0.0, lum_sq_sum / n - mean * mean) / n);
-  }
-  return e;
+  return sum.estimate();
 }
 
 // The environment and interreflection at a pixel: its paths' first bounces
@@ -250,8 +263,7 @@ KeptPaths::KeptPaths(const GBuffer& g, const Integrator& paths, const Illuminati
     }
     row.vertices.shrink_to_fit();  // a vector grows by up to twice what it holds
     row.path_end.shrink_to_fit();
-    kept_bytes += row.vertices.size() * sizeof(Integrator::PathVertex) +
-                  (row.path_end.size() + row.pixel_end.size()) * sizeof(uint32_t);
+    kept_bytes += row.bytes();
     progress.advance();
   });
   progress.end();
@@ -261,11 +273,13 @@ KeptPaths::KeptPaths(const GBuffer& g, const Integrator& paths, const Illuminati
   }
 }
 
+size_t KeptPaths::Row::bytes() const {
+  return vertices.size() * sizeof(Integrator::PathVertex) + (path_end.size() + pixel_end.size()) * sizeof(uint32_t);
+}
+
 size_t KeptPaths::bytes() const {
   size_t bytes = 0;
-  for (const Row& row : rows_)
-    bytes += row.vertices.size() * sizeof(Integrator::PathVertex) +
-             (row.path_end.size() + row.pixel_end.size()) * sizeof(uint32_t);
+  for (const Row& row : rows_) bytes += row.bytes();
   return bytes;
 }
 
@@ -273,23 +287,17 @@ Vec3 KeptPaths::light(size_t pixel, const Integrator& lights, float& variance) c
   const Row& row = rows_[pixel / size_t(width_)];
   const size_t i = pixel % size_t(width_);
   const uint32_t first_path = i ? row.pixel_end[i - 1] : 0, paths = row.pixel_end[i] - first_path;
-  variance = 0.0f;
-  if (!paths) return Vec3::Zero();
   Rng rng(seed_, pixel, kKeptPathStream);
-  Vec3 sum = Vec3::Zero();
-  double lum_sum = 0.0, lum_sq_sum = 0.0;
+  EstimateSum sum;
   for (uint32_t k = first_path; k < first_path + paths; ++k) {
     Vec3 v = Vec3::Zero();
     for (uint32_t n = k ? row.path_end[k - 1] : 0; n < row.path_end[k]; ++n)
       v += lights.light_at_vertex(row.vertices[n], rng);
-    sum += v;
-    const double l = luminance(v);
-    lum_sum += l;
-    lum_sq_sum += l * l;
+    sum.add(v);
   }
-  const double mean = lum_sum / paths;
-  variance = float(std::max(0.0, lum_sq_sum / paths - mean * mean) / paths);
-  return sum / float(paths);
+  const PixelEstimate e = sum.estimate();
+  variance = e.variance;
+  return e.mean;
 }
 
 Image render_indirect_part(const GBuffer& g, const Integrator& integrator, const IlluminationOptions& options,

@@ -102,6 +102,7 @@ class KeptPaths {
     std::vector<Integrator::PathVertex> vertices;
     std::vector<uint32_t> path_end;   // each path's: one past its last vertex
     std::vector<uint32_t> pixel_end;  // each traced pixel's: one past its last path
+    size_t bytes() const;
   };
   int stride_, width_ = 0;
   uint64_t seed_;
