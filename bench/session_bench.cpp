@@ -1,5 +1,5 @@
 // The interactive engine: frame time while dragging one light of eight (one
-// of each type in turn), for each backend at 640x480 and 1280x720, and the
+// of each type in turn), for each backend at 640x480, 1280x720 and 1920x1080, and the
 // time the view takes to
 // converge (to the render of `relight render`) once the light is let go;
 // and one light's render by each backend alone. The CPU column is the
@@ -130,7 +130,7 @@ Fixture& fixture() {
   return f;
 }
 
-const int kSizes[2][2] = {{640, 480}, {1280, 720}};
+const int kSizes[3][2] = {{640, 480}, {1280, 720}, {1920, 1080}};
 
 // The one open session: one at a time, so that no other session's
 // refinement runs beside what is measured. Made after the fixture, so
@@ -174,7 +174,8 @@ Light dragged(int index, int step) {
   return light;
 }
 
-// Arguments: backend (0 cpu, 1 gl), size (0: 640x480, 1: 1280x720), the
+// Arguments: backend (0 cpu, 1 gl), size (0: 640x480, 1: 1280x720, 2:
+// 1920x1080), the
 // light dragged (0 point, 1 spot, 2 area, 3 soft point, 4 sun).
 void BM_DragOneLightOfEight(benchmark::State& state) {
   const Backend backend = state.range(0) ? Backend::gl : Backend::cpu;
@@ -200,7 +201,7 @@ void BM_DragOneLightOfEight(benchmark::State& state) {
                  std::to_string(kSizes[size][1]) + " dragging the " + fixture().rig.lights[size_t(index)].name);
 }
 BENCHMARK(BM_DragOneLightOfEight)
-    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1, 2, 3, 4}})
+    ->ArgsProduct({{0, 1}, {0, 1, 2}, {0, 1, 2, 3, 4}})
     ->Iterations(60)
     ->MeasureProcessCPUTime()
     ->UseManualTime()
@@ -209,7 +210,8 @@ BENCHMARK(BM_DragOneLightOfEight)
 // One light's interactive render by a backend alone, outside a session: how
 // much of a frame is the backend's (the rest is composing the frame and
 // handing it over). Real time and the process's CPU time (both cores).
-// Arguments as BM_DragOneLightOfEight's.
+// Arguments as BM_DragOneLightOfEight's, but backend 2: OpenGL shading by
+// fragment shader where it would by compute shader (on a GPU).
 void BM_BackendRender(benchmark::State& state) {
   const int size = int(state.range(1)), index = int(state.range(2));
   Fixture& f = fixture();
@@ -220,7 +222,9 @@ void BM_BackendRender(benchmark::State& state) {
   CpuDirectLight* cpu = nullptr;
   if (state.range(0)) {
     std::string why;
-    backend = GlRelighter::open(a.scene().mesh, view.surfaces(), {}, why);
+    ShadowMapOptions options;
+    if (state.range(0) == 2) options.shading = ShadowMapOptions::Shading::fragment;
+    backend = GlRelighter::open(a.scene().mesh, view.surfaces(), options, why);
     if (!backend) {
       state.SkipWithError(("OpenGL unavailable: " + why).c_str());
       return;
@@ -240,11 +244,14 @@ void BM_BackendRender(benchmark::State& state) {
       backend->render(light, out);
   }
   if (cpu) state.counters["rays_per_pixel"] = double(rays) / double(state.iterations() * out.pixels.size());
-  state.SetLabel(std::string(backend->name()) + " " + std::to_string(view.width()) + "x" +
+  const std::string device = cpu ? ""
+                                 : " (" + static_cast<GlRelighter*>(backend.get())->renderer() +
+                                       (state.range(0) == 2 ? ", fragment shader)" : ")");
+  state.SetLabel(std::string(backend->name()) + device + " " + std::to_string(view.width()) + "x" +
                  std::to_string(view.height()) + " " + f.rig.lights[size_t(index)].name);
 }
 BENCHMARK(BM_BackendRender)
-    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1, 2, 3, 4}})
+    ->ArgsProduct({{0, 1, 2}, {0, 1, 2}, {0, 1, 2, 3, 4}})
     ->Iterations(30)
     ->MeasureProcessCPUTime()
     ->UseRealTime()

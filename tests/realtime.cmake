@@ -1,6 +1,7 @@
 # The interactive engine: the relighting session (caches, refinement, exact
 # convergence to render_rig) and the OpenGL backend against the CPU one on
-# the reference scenes (skipped without OpenGL or without the scenes).
+# the reference scenes (skipped without OpenGL or without the scenes), its
+# compute and fragment shading against each other on the example room.
 add_executable(session_test session_test.cpp)
 target_link_libraries(session_test PRIVATE relight_relight relight_example GTest::gtest_main)
 gtest_discover_tests(session_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
@@ -11,9 +12,10 @@ target_link_libraries(frame_sequence_test PRIVATE relight_relight relight_exampl
 gtest_discover_tests(frame_sequence_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
 
 add_executable(realtime_test realtime_test.cpp)
-target_link_libraries(realtime_test PRIVATE relight_realtime relight_io GTest::gtest_main)
+target_link_libraries(realtime_test PRIVATE relight_realtime relight_io relight_example GTest::gtest_main)
 target_compile_definitions(realtime_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-gtest_discover_tests(realtime_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900 LABELS reference)
+gtest_discover_tests(realtime_test TEST_FILTER "Scenes/*" DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900 LABELS reference)
+gtest_discover_tests(realtime_test TEST_FILTER "GlShading.*" DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
 
 # Where the shadow maps look from: geometry only, no OpenGL context needed.
 relight_add_test(light_views_test light_views_test.cpp relight_realtime)

@@ -6,6 +6,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 namespace relight {
@@ -44,7 +45,9 @@ std::vector<EGLDisplay> candidate_displays() {
   return all;
 }
 
-// An OpenGL 3.3 core context on `display`, without a surface.
+// An OpenGL core context on `display`, without a surface: 4.3 (compute
+// shaders) where the driver has it, else 3.3. A driver may give exactly the
+// version asked for (NVIDIA's does), so the newer is asked for first.
 EGLContext create_context(EGLDisplay display) {
   if (!eglBindAPI(EGL_OPENGL_API)) return EGL_NO_CONTEXT;
   EGLConfig config = nullptr;
@@ -54,10 +57,14 @@ EGLContext create_context(EGLDisplay display) {
     if (!has_extension(display, "EGL_KHR_no_config_context")) return EGL_NO_CONTEXT;
     config = EGL_NO_CONFIG_KHR;
   }
-  const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                       EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                       EGL_NONE};
-  return eglCreateContext(display, config, EGL_NO_CONTEXT, context_attributes);
+  for (const auto [major, minor] : {std::pair{4, 3}, std::pair{3, 3}}) {
+    const EGLint context_attributes[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           major,   EGL_CONTEXT_MINOR_VERSION, minor, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attributes);
+    if (context != EGL_NO_CONTEXT) return context;
+  }
+  return EGL_NO_CONTEXT;
 }
 
 }  // namespace
@@ -102,6 +109,10 @@ std::unique_ptr<HeadlessContext> HeadlessContext::open(std::string& why) {
     return result;
   }
   return nullptr;
+}
+
+bool HeadlessContext::software() const {
+  return renderer_.find("llvmpipe") != std::string::npos || renderer_.find("softpipe") != std::string::npos;
 }
 
 HeadlessContext::~HeadlessContext() {

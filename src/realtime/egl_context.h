@@ -1,4 +1,5 @@
-// A headless OpenGL 3.3 core context through EGL: the GPU's driver where
+// A headless OpenGL core context (4.3 where the driver has it, at least 3.3)
+// through EGL: the GPU's driver where
 // there is one, Mesa's software rasteriser (llvmpipe) elsewhere; nothing
 // where no EGL display can be opened. A context is current on one thread at
 // a time: Current makes it current for a scope, on any thread.
@@ -23,6 +24,9 @@ class HeadlessContext {
   // GL_RENDERER and GL_VERSION.
   const std::string& renderer() const { return renderer_; }
   const std::string& version() const { return version_; }
+  // Whether the renderer is Mesa's software rasteriser (llvmpipe, softpipe)
+  // rather than a GPU's driver.
+  bool software() const;
 
   // Makes the context current on this thread for its lifetime (one thread
   // at a time: others wait).

@@ -1,5 +1,7 @@
 #include "realtime/gl_utils.h"
 
+#include <vector>
+
 namespace relight::gl {
 
 namespace {
@@ -30,19 +32,23 @@ GLuint compile_shader(GLenum type, const char* source, std::string& why) {
 
 }  // namespace
 
-GLuint link_program(const char* vertex, const char* fragment, std::string& why) {
-  const GLuint vs = compile_shader(GL_VERTEX_SHADER, vertex, why);
-  const GLuint fs = vs ? compile_shader(GL_FRAGMENT_SHADER, fragment, why) : 0;
-  if (!fs) {
-    if (vs) glDeleteShader(vs);
-    return 0;
+GLuint link_program(std::initializer_list<Stage> stages, std::string& why) {
+  std::vector<GLuint> shaders;
+  const auto drop_shaders = [&] {
+    for (GLuint shader : shaders) glDeleteShader(shader);
+  };
+  for (const Stage& stage : stages) {
+    const GLuint shader = compile_shader(stage.type, stage.source, why);
+    if (!shader) {
+      drop_shaders();
+      return 0;
+    }
+    shaders.push_back(shader);
   }
   const GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
+  for (GLuint shader : shaders) glAttachShader(program, shader);
   glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
+  drop_shaders();
   const std::string log = failure_log(program, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog);
   if (log.empty()) return program;
   why = "shader program does not link: " + log;

@@ -2,9 +2,12 @@
 
 #include <epoxy/gl.h>
 #include <spdlog/spdlog.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -20,11 +23,13 @@ namespace relight {
 
 namespace {
 
-// The shading program's source for one variant (see glsl/shade.frag).
-std::string shade_source(int light_type, int map_kind, int pcf_radius, bool extended) {
-  return "#version 330 core\n#define LIGHT_TYPE " + std::to_string(light_type) + "\n#define MAP_KIND " +
-         std::to_string(map_kind) + "\n#define PCF_RADIUS " + std::to_string(pcf_radius) + "\n#define EXTENDED " +
-         (extended ? "1" : "0") + "\n" + glsl::shade_frag;
+// The shading shader's source for one variant (see glsl/shade.glsl), as a
+// compute or a fragment shader.
+std::string shade_source(bool compute, int light_type, int map_kind, int pcf_radius, bool extended) {
+  return std::string(compute ? "#version 430 core" : "#version 330 core") + "\n#define LIGHT_TYPE " +
+         std::to_string(light_type) + "\n#define MAP_KIND " + std::to_string(map_kind) + "\n#define PCF_RADIUS " +
+         std::to_string(pcf_radius) + "\n#define EXTENDED " + (extended ? "1" : "0") + "\n" + glsl::shade_glsl +
+         (compute ? glsl::shade_comp : glsl::shade_frag);
 }
 
 }  // namespace
@@ -34,24 +39,29 @@ struct GlRelighter::State {
   ShadowMapOptions options;
   std::optional<LightViews> views;
   int width = 0, height = 0;
+  bool compute = false;  // shading by compute shader (else by fragment shader)
   GLuint mesh_vao = 0, mesh_vbo = 0, mesh_ebo = 0, screen_vao = 0;
   GLsizei index_count = 0;
   GLuint position_tex = 0, normal_tex = 0, gnormal_tex = 0;
-  GLuint flat_depth = 0, sun_depth = 0, cube_depth = 0, shadow_fbo = 0;
-  GLuint light_tex = 0, light_fbo = 0;
+  GLuint flat_depth = 0, sun_depth = 0, cube_depth = 0;
+  // A framebuffer for each shadow map (each cube face): binding one is
+  // cheaper than attaching another map to one framebuffer, which a driver
+  // validates anew each time.
+  GLuint flat_fbo = 0, sun_fbo = 0, cube_fbos[6] = {};
+  GLuint light_tex = 0, light_fbo = 0, readback_buffer = 0;
   GLuint depth_program = 0;
   std::map<std::tuple<int, int, int, bool>, GLuint> shade_programs;
-  std::vector<float> readback;
 
   ~State() {
     if (!context) return;
     HeadlessContext::Current current(*context);
     const GLuint textures[] = {position_tex, normal_tex, gnormal_tex, flat_depth, sun_depth, cube_depth, light_tex};
     glDeleteTextures(7, textures);
-    const GLuint framebuffers[] = {shadow_fbo, light_fbo};
-    glDeleteFramebuffers(2, framebuffers);
-    const GLuint buffers[] = {mesh_vbo, mesh_ebo};
-    glDeleteBuffers(2, buffers);
+    const GLuint framebuffers[] = {flat_fbo, sun_fbo, light_fbo};
+    glDeleteFramebuffers(3, framebuffers);
+    glDeleteFramebuffers(6, cube_fbos);
+    const GLuint buffers[] = {mesh_vbo, mesh_ebo, readback_buffer};
+    glDeleteBuffers(3, buffers);
     const GLuint arrays[] = {mesh_vao, screen_vao};
     glDeleteVertexArrays(2, arrays);
     glDeleteProgram(depth_program);
@@ -60,6 +70,9 @@ struct GlRelighter::State {
 
   GLuint flat_map_of(const LightSamplePoint& s) const {
     return s.map == LightSamplePoint::Map::orthographic ? sun_depth : flat_depth;
+  }
+  GLuint flat_fbo_of(const LightSamplePoint& s) const {
+    return s.map == LightSamplePoint::Map::orthographic ? sun_fbo : flat_fbo;
   }
 
   void render_shadow_map(const LightSamplePoint& sample);
@@ -74,7 +87,6 @@ struct GlRelighter::State {
 void GlRelighter::State::render_shadow_map(const LightSamplePoint& s) {
   glUseProgram(depth_program);
   const GLint vp = glGetUniformLocation(depth_program, "view_projection");
-  glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_BLEND);
@@ -85,14 +97,14 @@ void GlRelighter::State::render_shadow_map(const LightSamplePoint& s) {
     glViewport(0, 0, s.side, s.side);
     const Mat4 projection = perspective(kPi / 2, s.near, s.far);
     for (int face = 0; face < 6; ++face) {
-      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, cube_depth, 0);
+      glBindFramebuffer(GL_FRAMEBUFFER, cube_fbos[face]);
       glClear(GL_DEPTH_BUFFER_BIT);
       const Mat4 m = projection * cube_face_view(s.eye, face);
       glUniformMatrix4fv(vp, 1, GL_FALSE, m.data());
       glDrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr);
     }
   } else {
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, flat_map_of(s), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, flat_fbo_of(s));
     glViewport(0, 0, s.side, s.side);
     glClear(GL_DEPTH_BUFFER_BIT);
     glUniformMatrix4fv(vp, 1, GL_FALSE, s.view_projection.data());
@@ -107,8 +119,10 @@ GLuint GlRelighter::State::shade_program(int light_type, int map_kind, int pcf_r
   GLuint& program = shade_programs[{light_type, map_kind, pcf_radius, extended}];
   if (!program) {
     std::string why;
+    const std::string source = shade_source(compute, light_type, map_kind, pcf_radius, extended);
     program =
-        gl::link_program(glsl::screen_vert, shade_source(light_type, map_kind, pcf_radius, extended).c_str(), why);
+        compute ? gl::link_program({{GL_COMPUTE_SHADER, source.c_str()}}, why)
+                : gl::link_program({{GL_VERTEX_SHADER, glsl::screen_vert}, {GL_FRAGMENT_SHADER, source.c_str()}}, why);
     if (!program) throw std::runtime_error("OpenGL backend: " + why);
   }
   return program;
@@ -152,6 +166,14 @@ void GlRelighter::State::shade(const Light& light, const Vec3& emission, const L
   glUniform1f(loc("normal_offset"), options.normal_offset);
   glUniform1f(loc("depth_offset"), options.depth_offset);
   glUniform2f(loc("distance_range"), s.distance_range.x(), std::min(s.distance_range.y(), 3.0e38f));
+  if (compute) {
+    glUniform1i(loc("accumulate"), add);
+    glBindImageTexture(0, light_tex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glDispatchCompute(GLuint(width + 7) / 8, GLuint(height + 7) / 8, 1);
+    // The next sample adds to what this one wrote; the readback reads it.
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+    return;
+  }
 
   glBindFramebuffer(GL_FRAMEBUFFER, light_fbo);
   glViewport(0, 0, width, height);
@@ -175,15 +197,28 @@ void GlRelighter::State::add_light(const Light& light, const Vec3& emission, boo
   }
 }
 
+// Reads the light back into `out` through a pixel buffer (the driver copies
+// into it directly), then copies it out on every core: at 1920x1080 this is
+// 25 MB a frame, the larger part of a frame on a fast GPU.
 void GlRelighter::State::read(GLuint fbo, Image& out) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(float), "an image's pixels are packed RGB floats");
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-  readback.resize(size_t(width) * height * 4);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, readback_buffer);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, readback.data());
-  if (out.width != width || out.height != height) out = Image(width, height);
   // Framebuffer row y holds view row y (the textures were uploaded top row first).
-  for (size_t i = 0; i < out.size(); ++i)
-    out.pixels[i] = Vec3(readback[4 * i], readback[4 * i + 1], readback[4 * i + 2]);
+  glReadPixels(0, 0, width, height, GL_RGB, GL_FLOAT, nullptr);
+  if (out.width != width || out.height != height) out = Image(width, height);
+  const size_t row = size_t(width) * sizeof(Vec3);
+  const auto* pixels =
+      static_cast<const char*>(glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(row * height), GL_MAP_READ_BIT));
+  if (pixels) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, height, 16), [&](const tbb::blocked_range<int>& rows) {
+      std::memcpy(reinterpret_cast<char*>(out.pixels.data()) + row * size_t(rows.begin()),
+                  pixels + row * size_t(rows.begin()), row * size_t(rows.size()));
+    });
+    glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+  }
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 }
 
 // ---- setup ----
@@ -205,8 +240,13 @@ std::unique_ptr<GlRelighter> GlRelighter::open(const TriangleMesh& mesh, const P
   state->width = w;
   state->height = h;
   state->views.emplace(state->options, mesh.bounds(), surfaces);
+  using Shading = ShadowMapOptions::Shading;
+  const bool has_compute = epoxy_gl_version() >= 43;
+  state->compute = has_compute && (options.shading == Shading::compute ||
+                                   (options.shading == Shading::automatic && !state->context->software()));
 
-  state->depth_program = gl::link_program(glsl::depth_vert, glsl::depth_frag, why);
+  state->depth_program =
+      gl::link_program({{GL_VERTEX_SHADER, glsl::depth_vert}, {GL_FRAGMENT_SHADER, glsl::depth_frag}}, why);
   if (!state->depth_program) return nullptr;
   try {
     state->shade_program(0, 0, 0, false);  // one variant now: a driver that cannot compile it is no backend
@@ -273,10 +313,19 @@ std::unique_ptr<GlRelighter> GlRelighter::open(const TriangleMesh& mesh, const P
   for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
     glTexParameteri(GL_TEXTURE_CUBE_MAP, wrap, GL_CLAMP_TO_EDGE);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-  glGenFramebuffers(1, &state->shadow_fbo);
-  glBindFramebuffer(GL_FRAMEBUFFER, state->shadow_fbo);
-  glDrawBuffer(GL_NONE);
-  glReadBuffer(GL_NONE);
+  const auto depth_framebuffer = [](GLenum target, GLuint texture) {
+    GLuint fbo = 0;
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, target, texture, 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    return fbo;
+  };
+  state->flat_fbo = depth_framebuffer(GL_TEXTURE_2D, state->flat_depth);
+  state->sun_fbo = depth_framebuffer(GL_TEXTURE_2D, state->sun_depth);
+  for (int face = 0; face < 6; ++face)
+    state->cube_fbos[face] = depth_framebuffer(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, state->cube_depth);
 
   // The light accumulates in a float framebuffer.
   state->light_tex = gl::float_texture(w, h, GL_RGBA32F, GL_RGBA, nullptr);
@@ -287,12 +336,17 @@ std::unique_ptr<GlRelighter> GlRelighter::open(const TriangleMesh& mesh, const P
     why = "a float framebuffer is not supported";
     return nullptr;
   }
+  glGenBuffers(1, &state->readback_buffer);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, state->readback_buffer);
+  glBufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(size_t(w) * h * sizeof(Vec3)), nullptr, GL_STREAM_READ);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   glDisable(GL_CULL_FACE);  // both sides of every surface cast shadows
   if (glGetError() != GL_NO_ERROR) {
     why = "OpenGL error while setting up";
     return nullptr;
   }
-  spdlog::info("OpenGL backend: {} ({})", state->context->renderer(), state->context->version());
+  spdlog::info("OpenGL backend: {} ({}), shading by {} shader", state->context->renderer(), state->context->version(),
+               state->compute ? "compute" : "fragment");
   return std::unique_ptr<GlRelighter>(new GlRelighter(std::move(state)));
 }
 
@@ -300,6 +354,7 @@ GlRelighter::GlRelighter(std::unique_ptr<State> state) : state_(std::move(state)
 GlRelighter::~GlRelighter() = default;
 
 const std::string& GlRelighter::renderer() const { return state_->context->renderer(); }
+bool GlRelighter::shades_by_compute() const { return state_->compute; }
 
 namespace {
 

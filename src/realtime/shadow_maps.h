@@ -4,7 +4,8 @@
 // a cube map for a point light, a perspective map for a spot, an
 // orthographic map for the sun, several maps with percentage-closer
 // filtering for lights with an extent (light_views.h) — rendered into a
-// float framebuffer and read back; the session multiplies by the albedo.
+// float framebuffer (by a compute shader on a GPU, ShadowMapOptions::shading) and read
+// back; the session multiplies by the albedo.
 // Headless through EGL (a GPU driver, or Mesa's llvmpipe). The shaders are
 // in glsl/, embedded at build time.
 #pragma once
@@ -26,6 +27,11 @@ struct ShadowMapOptions {
   int pcf_radius = 1;           // lights with an extent: percentage-closer filtering over (2r+1)^2 bilinear taps
   int soft_samples = 8;         // shadow maps per light with an extent (a disc, a rectangle, the sun's disc)
   int sun_cascades = 3;         // the sun's maps, each for a slice of the view by distance (equal shares of pixels)
+  // Shading by compute or fragment shader. automatic: by compute shader on a
+  // GPU whose driver has them (OpenGL 4.3; a data-centre GPU runs fragment
+  // shaders on its few graphics units only), by fragment shader on a
+  // software rasteriser (llvmpipe's fragment path is the faster there).
+  enum class Shading { automatic, fragment, compute } shading = Shading::automatic;
 };
 
 class GlRelighter final : public DirectLightBackend {
@@ -40,6 +46,8 @@ class GlRelighter final : public DirectLightBackend {
   const char* name() const override { return "gl"; }
   // The OpenGL renderer's name (GL_RENDERER), e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
   const std::string& renderer() const;
+  // Whether it shades by compute shader (ShadowMapOptions::shading).
+  bool shades_by_compute() const;
 
   // The direct light of `light` (its emission as given) at each pixel's
   // surface, irradiance / pi, like render_direct_light.

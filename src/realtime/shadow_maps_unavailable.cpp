@@ -17,6 +17,7 @@ const std::string& GlRelighter::renderer() const {
   static const std::string none = "none";
   return none;
 }
+bool GlRelighter::shades_by_compute() const { return false; }
 void GlRelighter::render(const Light&, Image&) {}
 
 }  // namespace relight
