@@ -12,8 +12,12 @@
 #include <thread>
 
 #include "cli/commands.h"
+#include "io/frame_files.h"
 #include "io/image_io.h"
 #include "io/mesh_io.h"
+#include "io/scene_io.h"
+#include "render/render_illumination.h"
+#include "room_scene.h"
 #include "scene_folder.h"
 
 namespace fs = std::filesystem;
@@ -164,6 +168,64 @@ TEST(Cli, RenderFramesWritesTheSequence) {
       (x < first.width / 2 ? left : right) += relight::luminance(third.at(x, y)) - relight::luminance(first.at(x, y));
   EXPECT_GT(right, 0.0);
   EXPECT_LT(left, 0.0);
+}
+
+// A tracked shot: the example room's photo from a camera moving sideways,
+// one photo per frame, analysed into a folder per frame (the albedo fused
+// over the frames), then re-lit frame by frame; and the errors a shot meets.
+TEST(Cli, AShotIsAnalysedFrameByFrameAndRelitAsASequence) {
+  using namespace relight;
+  const fs::path dir = temp_folder("shot");
+  const Scene room = example::room_scene(160, 120);
+  const RayScene rays(room.mesh);
+  Lighting lighting;
+  lighting.lights = room.lights;
+  lighting.environment = Environment::constant(room.background);
+  const example::RoomAlbedo albedo = example::room_albedo();
+  const Integrator integrator(rays, lighting, &albedo);
+  nlohmann::json cameras = nlohmann::json::array();
+  fs::create_directories(dir / "frames");
+  for (int k = 0; k < 3; ++k) {
+    CameraSpec spec = room.camera.spec();
+    const Vec3 right = (spec.look_at - spec.position).cross(spec.up).normalized();
+    spec.position += 0.1f * float(k) * right;
+    spec.look_at += 0.1f * float(k) * right;
+    const Camera camera(spec, 160, 120);
+    const GBuffer samples(camera, rays, 4, 5, "room");
+    write_exr(frame_file(dir / "frames" / "photo.####.exr", k + 1),
+              synthesize_photo(samples, camera, integrator, albedo, 8, 3 + uint64_t(k), Progress::silent()));
+    cameras.push_back(camera_to_json(spec));
+  }
+  std::ifstream in(kRoom / "scene.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  for (const char* key : {"photo", "geometry"}) j[key] = (kRoom / j[key].get<std::string>()).string();
+  j["shot"] = {{"photo", "frames/photo.####.exr"}, {"first_frame", 1}, {"cameras", cameras}};
+  const std::string scene = (dir / "scene.json").string();
+  std::ofstream(scene) << j.dump();
+
+  ASSERT_EQ(relight_run({"analyze", scene, "-o", (dir / "analysis").string(), "--spp", "4"}), 0);
+  for (const char* frame : {"frame.0001", "frame.0002", "frame.0003"})
+    EXPECT_TRUE(fs::exists(dir / "analysis" / frame / "analysis.json")) << frame;
+  const std::string rig = (kRoom / "rigs" / "evening.json").string();
+  ASSERT_EQ(relight_run({"render", scene, "--rig", rig, "--analysis", (dir / "analysis").string(), "-o",
+                         (dir / "relit" / "lit.####.exr").string()}),
+            0);
+  for (const char* f : {"lit.0001.exr", "lit.0002.png", "lit.0003.exr"})
+    EXPECT_TRUE(fs::exists(dir / "relit" / f)) << f;
+  const Image first = read_image(dir / "relit" / "lit.0001.exr"), last = read_image(dir / "relit" / "lit.0003.exr");
+  EXPECT_EQ(first.width, 160);
+  EXPECT_NE(first.pixels, last.pixels) << "the camera moved";
+
+  // A shot renders only from its analysis, and only to a sequence.
+  EXPECT_EQ(relight_run({"render", scene, "--rig", rig, "-o", (dir / "lit.####.exr").string()}), 2);
+  EXPECT_EQ(relight_run({"render", scene, "--rig", rig, "--analysis", (dir / "analysis").string(), "-o",
+                         (dir / "lit.exr").string()}),
+            2);
+  // A frame's photo missing: named before any work.
+  fs::remove(dir / "frames" / "photo.0002.exr");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(relight_run({"analyze", scene, "-o", (dir / "again").string()}), 2);
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("photo.0002.exr"), std::string::npos);
 }
 
 // relight farm without Slurm: the job script's chunks of frames, and

@@ -10,7 +10,7 @@ target_compile_definitions(e2e_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE
 gtest_discover_tests(e2e_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 1200 LABELS reference)
 
 add_executable(cli_test cli_test.cpp)
-target_link_libraries(cli_test PRIVATE relight_cli nlohmann_json::nlohmann_json GTest::gtest_main)
+target_link_libraries(cli_test PRIVATE relight_cli relight_example nlohmann_json::nlohmann_json GTest::gtest_main)
 target_compile_definitions(cli_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}" RELIGHT_VERSION="${PROJECT_VERSION}")
 gtest_discover_tests(cli_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
 

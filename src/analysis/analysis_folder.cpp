@@ -5,12 +5,14 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "io/json_text.h"
 #include "io/atomic_file.h"
 #include "io/content_hash.h"
+#include "io/frame_files.h"
 #include "io/image_io.h"
 #include "io/input_file.h"
 #include "io/json_reader.h"
+#include "io/json_text.h"
+#include "io/output_guard.h"
 #include "io/response_curve.h"
 #include "io/scene_io.h"
 
@@ -117,6 +119,8 @@ std::vector<float> unreliable_marks(const AlbedoImages& albedo) {
 
 }  // namespace
 
+fs::path shot_frame_folder(const fs::path& analysis, int frame) { return frame_file(analysis / "frame.####", frame); }
+
 std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& options) {
   ContentHash hash;
   hash.add_file(scene.path);
@@ -177,6 +181,28 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   for (const TriangleAlbedo& t : a.albedo.unseen_triangles)
     triangles.push_back({t.triangle, t.albedo.x(), t.albedo.y(), t.albedo.z()});
   j["unseen_triangles"] = std::move(triangles);
+  write_text_atomically(folder / "analysis.json", json_text(j));
+  batch.commit();
+}
+
+void replace_albedo(const fs::path& folder, const Image& albedo, const Scene& scene) {
+  const Analysis analysis = load_analysis(folder, scene);  // checked: the folder is this scene's
+  if (albedo.width != analysis.albedo.albedo.width || albedo.height != analysis.albedo.albedo.height)
+    throw std::invalid_argument("replace_albedo: the albedo is not the analysis's size");
+  Image albedo_coverage = albedo;
+  for (size_t i = 0; i < albedo.size(); ++i) albedo_coverage.pixels[i] *= analysis.coverage[i];
+  nlohmann::json j = JsonReader::parse_file(folder / "analysis.json");
+  // Read above, rewritten here: the files this function exists to replace.
+  for (const char* name : {"albedo.exr", "albedo_surface.exr", "albedo.png", "analysis.json"})
+    allow_replacing_input(folder / name);
+  OutputBatch batch;
+  write_exr(folder / "albedo.exr", albedo_coverage);
+  write_exr(folder / "albedo_surface.exr", albedo);
+  write_png(folder / "albedo.png", albedo_coverage);
+  j["images_hash"] = analysis_images_hash([&](const char* name) {
+    const fs::path file = folder / name;
+    return std::string_view(name).starts_with("albedo") ? batch.staged(file) : file;
+  });
   write_text_atomically(folder / "analysis.json", json_text(j));
   batch.commit();
 }

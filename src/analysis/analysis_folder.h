@@ -21,10 +21,18 @@ void save_analysis(const std::filesystem::path& folder, const Analysis& analysis
 // (made from a scene.json, photo, geometry or probe that has changed since),
 // or holds images other than those its analysis.json describes.
 Analysis load_analysis(const std::filesystem::path& folder, const Scene& scene);
+// Replaces the albedo of an analysis folder made for this scene (a shot's
+// frame: its albedo fused over the frames), the folder's other images and
+// records kept; like save_analysis, all of it at once or nothing.
+void replace_albedo(const std::filesystem::path& folder, const Image& albedo, const Scene& scene);
 // Whether the folder's analysis.json marks a preview (made of the photo
 // reduced: reduce_for_preview); false where it cannot be read (load_analysis
 // then says why).
 bool is_preview_analysis(const std::filesystem::path& folder);
+
+// A tracked shot's analysis: one analysis folder per frame inside it,
+// frame.0001 ... (frame 1's).
+std::filesystem::path shot_frame_folder(const std::filesystem::path& analysis, int frame);
 
 // A hash of everything an analysis depends on: the scene.json file, the
 // photo, geometry and probe files (their bytes), and the options that

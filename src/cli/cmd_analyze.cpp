@@ -1,4 +1,5 @@
 // relight analyze: initial illumination, albedo, mask into a folder.
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -6,12 +7,15 @@
 #include <filesystem>
 #include <vector>
 
+#include "analysis/albedo_atlas.h"
+#include "analysis/analysed_scene.h"
 #include "analysis/analysis_folder.h"
 #include "analysis/view_checks.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
+#include "io/scene_io.h"
 
 namespace relight::cli {
 
@@ -26,17 +30,21 @@ struct AnalyzeArgs {
   AnalysisOptions options;
 };
 
-void run_analyze(const AnalyzeArgs& args, Progress& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  const AnalysisOptions requested = args.preview ? preview_options(args.options) : args.options;
-  LoadedScene s = load_for_analysis(args.scene, requested, progress, CameraUse::for_analysis);
-  warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
-  AnalysisOptions options = requested;
-  options.strategy = args.strategy.empty() ? default_strategy(s.scene) : *parse_strategy(args.strategy);
+// The options of the command for a loaded scene.
+AnalysisOptions options_for(const AnalyzeArgs& args, const Scene& scene) {
+  AnalysisOptions options = args.preview ? preview_options(args.options) : args.options;
+  options.strategy = args.strategy.empty() ? default_strategy(scene) : *parse_strategy(args.strategy);
   options.interreflection = args.interreflection == "on";
   options.method = *parse_analysis_method(args.method);
   options.bounce_source = *parse_bounce_source(args.bounce_source);
   options.direct_per_pixel = args.direct_light == "pixels";
+  return options;
+}
+
+// Analyses a loaded scene (a still, or a shot's frame) into `folder`.
+Analysis analyse_into(const fs::path& folder, LoadedScene& s, const AnalyzeArgs& args, Progress& progress) {
+  warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
+  const AnalysisOptions options = options_for(args, s.scene);
   std::vector<Image> renders;  // albedo_coverage of each render, with --save-renders
   const auto keep = [&](int, const AlbedoImages& albedo) { renders.push_back(albedo.albedo_coverage); };
   Analysis analysis =
@@ -44,20 +52,74 @@ void run_analyze(const AnalyzeArgs& args, Progress& progress) {
   analysis.registered_camera = s.registered_camera;
   warn_about_albedo_above_one(s.scene.path.string(), *s.gbuffer, analysis.albedo.albedo, analysis.albedo.mean,
                               "the scene's lighting");
-  OutputBatch folder;  // the renders appear with the analysis
-  save_analysis(args.out, analysis, s.scene);
+  OutputBatch batch;  // the renders appear with the analysis
+  save_analysis(folder, analysis, s.scene);
   for (size_t i = 0; i < renders.size(); ++i)
-    write_exr(fs::path(args.out) / ("albedo_render" + std::to_string(i + 1) + ".exr"), renders[i]);
-  folder.commit();
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    write_exr(folder / ("albedo_render" + std::to_string(i + 1) + ".exr"), renders[i]);
+  batch.commit();
+  return analysis;
+}
+
+std::string summary(const Analysis& analysis) {
+  const AnalysisOptions& options = analysis.options;
   const std::string sampling = options.method == AnalysisMethod::path
                                    ? std::to_string(options.paths_per_pixel) + " spp"
                                    : "radiosity, " + std::to_string(options.node_samples) + " samples and " +
                                          std::to_string(options.gather_rays) + " rays per node";
-  std::printf("%s (%s, %s, %d render%s, residual %.1f %%) written to %s in %.1f s\n",
-              options.preview ? "preview analysis" : "analysis", to_string(options.strategy), sampling.c_str(),
-              analysis.iterations, analysis.iterations > 1 ? "s" : "", 100.0 * analysis.residual, args.out.c_str(),
-              secs);
+  return fmt::format("{} ({}, {}, {} render{}, residual {:.1f} %)", options.preview ? "preview analysis" : "analysis",
+                     to_string(options.strategy), sampling, analysis.iterations, analysis.iterations > 1 ? "s" : "",
+                     100.0 * analysis.residual);
+}
+
+// A tracked shot: each frame analysed into its folder (shot_frame_folder),
+// then the albedo fused over the frames (AlbedoAtlas) and each frame's
+// analysis saved again with its view of the fused albedo.
+void analyse_shot(const AnalyzeArgs& args, const Scene& scene, Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<ShotFrame>& frames = scene.shot.frames;
+  create_output_folder(args.out);
+  AlbedoAtlas atlas(scene.mesh);
+  {
+    const RayScene rays(scene.mesh);
+    for (const ShotFrame& frame : frames) {
+      const Camera camera(frame.camera, scene.camera.width(), scene.camera.height());
+      atlas.size_for(PixelSurfaces::central_samples(GBuffer(camera, rays, 1, 1, scene.path.string())), camera);
+    }
+  }
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const auto frame_start = std::chrono::steady_clock::now();
+    LoadedScene s =
+        prepare_for_analysis(load_shot_frame(scene, k), options_for(args, scene), progress, CameraUse::for_analysis);
+    const fs::path folder = shot_frame_folder(args.out, frames[k].number);
+    const Analysis analysis = analyse_into(folder, s, args, progress);
+    atlas.add(PixelSurfaces::central_samples(*s.gbuffer), analysis.albedo.albedo, albedo_weights(analysis));
+    std::printf("frame %d (%zu of %zu): %s written to %s in %.1f s\n", frames[k].number, k + 1, frames.size(),
+                summary(analysis).c_str(), folder.c_str(), seconds_since(frame_start));
+    std::fflush(stdout);
+  }
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const fs::path folder = shot_frame_folder(args.out, frames[k].number);
+    const std::unique_ptr<AnalysedScene> analysed = AnalysedScene::from_folder(load_shot_frame(scene, k), folder);
+    const Image fused =
+        atlas.albedo_for(PixelSurfaces::central_samples(analysed->gbuffer()), analysed->analysis().albedo.albedo);
+    replace_albedo(folder, fused, analysed->scene());
+  }
+  std::printf("shot of %zu frames analysed into %s in %.1f s; the albedo fused over the frames (%zu texels)\n",
+              frames.size(), args.out.c_str(), seconds_since(start), atlas.texels());
+}
+
+void run_analyze(const AnalyzeArgs& args, Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  Scene scene = load_scene(args.scene, progress);
+  log_scene(scene, args.scene);
+  if (!scene.shot.frames.empty()) {
+    if (args.preview) throw InputError("--preview", "", "a preview analysis is of a still; the scene is a shot");
+    return analyse_shot(args, scene, progress);
+  }
+  const AnalysisOptions requested = args.preview ? preview_options(args.options) : args.options;
+  LoadedScene s = prepare_for_analysis(std::move(scene), requested, progress, CameraUse::for_analysis);
+  const Analysis analysis = analyse_into(args.out, s, args, progress);
+  std::printf("%s written to %s in %.1f s\n", summary(analysis).c_str(), args.out.c_str(), seconds_since(start));
 }
 
 }  // namespace

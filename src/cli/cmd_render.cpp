@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "analysis/analysis_folder.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -39,10 +40,6 @@ std::pair<fs::path, fs::path> write_relit(fs::path out, const Image& image, floa
   write_png(png, image, exposure);
   pair.commit();
   return {out, png};
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // The frames asked for, checked against the output name and the rig.
@@ -104,9 +101,54 @@ void render_frames(const RenderArgs& args, const AnalysedScene& analysed, const 
               count, args.out.c_str(), seconds_since(start), stats.light_renders, stats.light_reuses);
 }
 
+// A tracked shot: each frame re-lit from its analysis (relight analyze's
+// frame folders, whose albedo is fused over the shot), the rig at that
+// frame where it is animated.
+void render_shot(const RenderArgs& args, const Scene& scene, const Rig& rig, const RenderOptions& options,
+                 Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  if (args.analysis.empty())
+    throw InputError(args.scene, "",
+                     "is a shot: analyse it first (relight analyze, which fuses the albedo over its frames) and "
+                     "give the folder with --analysis");
+  if (!has_frame_digits(args.out))
+    throw InputError(args.out, "", "a shot renders a frame sequence: name the output with '#'s (relit.####.exr)");
+  std::optional<FrameRange> only;
+  if (!args.frames.empty()) {
+    only = parse_frame_range(args.frames);
+    if (!only) throw InputError("--frames", "", "expected a frame (12) or a range (1-120), got '" + args.frames + "'");
+  }
+  create_output_folder(fs::path(args.out).parent_path().empty() ? fs::path(".") : fs::path(args.out).parent_path());
+  const std::vector<ShotFrame>& frames = scene.shot.frames;
+  int written = 0;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const int number = frames[k].number;
+    if (only && (number < only->first || number > only->last)) continue;
+    const auto frame_start = std::chrono::steady_clock::now();
+    const std::unique_ptr<AnalysedScene> analysed =
+        AnalysedScene::from_folder(load_shot_frame(scene, k), shot_frame_folder(args.analysis, number));
+    RenderOptions frame_options = options;
+    if (!args.spp->count()) frame_options.paths_per_pixel = analysed->analysis().options.paths_per_pixel;
+    const Image image = render_rig(*analysed, rig_at_frame(rig, number), frame_options, progress);
+    const fs::path out = write_relit(frame_file(args.out, number), image, args.exposure).first;
+    ++written;
+    std::printf("frame %d (%zu of %zu): %s written in %.1f s\n", number, k + 1, frames.size(), out.c_str(),
+                seconds_since(frame_start));
+    std::fflush(stdout);
+  }
+  if (written == 0) throw InputError("--frames", "", "no frame of the shot is in " + args.frames);
+  std::printf("%d frames of the shot written to %s in %.1f s\n", written, args.out.c_str(), seconds_since(start));
+}
+
 void run_render(const RenderArgs& args, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   const Rig rig = load_rig(args.rig);
+  Scene scene = load_scene(args.scene, progress);
+  log_scene(scene, args.scene);
+  RenderOptions render_options;
+  render_options.paths_per_pixel = args.options.paths_per_pixel;
+  render_options.max_bounces = args.options.max_bounces;
+  if (!scene.shot.frames.empty()) return render_shot(args, scene, rig, render_options, progress);
   const std::optional<FrameRange> frames = frames_to_render(args, rig);
   // A sequence's folder is made, as Blender makes its; a still's must exist.
   // Either way before the long work.
@@ -118,13 +160,10 @@ void run_render(const RenderArgs& args, Progress& progress) {
   }
   check_output_folder(args.out);
   const std::unique_ptr<AnalysedScene> analysed =
-      load_analysed_scene(args.scene, args.analysis, args.options, progress);
-  RenderOptions render_options;
+      analysed_scene(std::move(scene), args.analysis, args.options, progress);
   // By default the analysis's paths: with its seed, the render's noise then
   // follows the analysis's, and the scene's own lights give back the photo.
-  render_options.paths_per_pixel =
-      args.spp->count() ? args.options.paths_per_pixel : analysed->analysis().options.paths_per_pixel;
-  render_options.max_bounces = args.options.max_bounces;
+  if (!args.spp->count()) render_options.paths_per_pixel = analysed->analysis().options.paths_per_pixel;
   if (frames) return render_frames(args, *analysed, rig, *frames, render_options, progress);
   const Image image = render_rig(*analysed, rig, render_options, progress);
   const auto [out, png] = write_relit(args.out, image, args.exposure);

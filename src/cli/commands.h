@@ -4,6 +4,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <functional>
 #include <initializer_list>
 #include <memory>
@@ -59,6 +60,9 @@ struct LoadedScene {
 };
 LoadedScene load_for_analysis(const std::string& scene_path, const AnalysisOptions& options, Progress& progress,
                               CameraUse camera = CameraUse::as_given);
+// The same for a scene already loaded (a shot's frame).
+LoadedScene prepare_for_analysis(Scene&& scene, const AnalysisOptions& options, Progress& progress,
+                                 CameraUse camera = CameraUse::as_given);
 // Logs what scene_path holds: photo size, triangles, lights, probes.
 void log_scene(const Scene& scene, const std::string& scene_path);
 
@@ -67,6 +71,9 @@ void log_scene(const Scene& scene, const std::string& scene_path);
 // suggests.
 std::unique_ptr<AnalysedScene> load_analysed_scene(const std::string& scene_path, const std::string& analysis_folder,
                                                    AnalysisOptions options, Progress& progress);
+// The same for a scene already loaded.
+std::unique_ptr<AnalysedScene> analysed_scene(Scene&& scene, const std::string& analysis_folder,
+                                              AnalysisOptions options, Progress& progress);
 
 // A man-page style --help footer: DESCRIPTION, EXAMPLES (each a command line
 // and what it does), EXIT STATUS and where the full documentation is.
@@ -75,6 +82,9 @@ struct HelpExample {
   const char* effect;
 };
 std::string help_footer(const char* description, std::initializer_list<HelpExample> examples);
+
+// Seconds from `start` to now.
+double seconds_since(std::chrono::steady_clock::time_point start);
 
 // Registers the scene's camera to its photo (analysis/camera_registration.h)
 // and prints what moved and how much the edge mismatch fell.

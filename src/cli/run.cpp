@@ -66,14 +66,23 @@ void log_scene(const Scene& scene, const std::string& scene_path) {
 
 LoadedScene load_for_analysis(const std::string& scene_path, const AnalysisOptions& options, Progress& progress,
                               CameraUse camera) {
+  Scene scene = load_scene(scene_path, progress);
+  log_scene(scene, scene_path);
+  return prepare_for_analysis(std::move(scene), options, progress, camera);
+}
+
+LoadedScene prepare_for_analysis(Scene&& scene, const AnalysisOptions& options, Progress& progress, CameraUse camera) {
   LoadedScene s;
-  s.scene = load_scene(scene_path, progress);
-  log_scene(s.scene, scene_path);
+  s.scene = std::move(scene);
   if (options.preview) reduce_for_preview(s.scene);
   s.rays = std::make_unique<RayScene>(s.scene.mesh);
   if (camera == CameraUse::for_analysis) s.registered_camera = camera_for_analysis(s.scene, *s.rays, options, progress);
   s.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s.scene, *s.rays, options));
   return s;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::string help_footer(const char* description, std::initializer_list<HelpExample> examples) {

@@ -1,12 +1,13 @@
 #include "io/scene_io.h"
 
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 #include <optional>
 
-#include <spdlog/spdlog.h>
-
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/frame_files.h"
 #include "io/gltf_scene.h"
 #include "io/image_io.h"
 #include "io/json_reader.h"
@@ -438,11 +439,54 @@ nlohmann::json camera_to_json(const CameraSpec& c) {
   return j;
 }
 
+// scene.json's `shot`: the photos' file pattern ('#'s for the frame number),
+// the first frame's number and a camera per frame. Each photo must exist.
+Shot parse_shot(const JsonReader& r, const json& v, const fs::path& scene_path) {
+  const std::string ptr = "/shot";
+  r.expect_object(v, ptr);
+  r.warn_unknown_keys(v, ptr, {"photo", "first_frame", "cameras"});
+  const fs::path pattern = resolve(scene_path, r.string(r.required(v, ptr, "photo"), ptr + "/photo"));
+  if (!has_frame_digits(pattern))
+    r.fail(ptr + "/photo", "expected a file name with '#'s for the frame number (photo.####.exr)");
+  check_read_inside(scene_path.parent_path(), scene_path, ptr + "/photo", pattern);
+  int first = 1;
+  if (auto* f = r.optional(v, "first_frame")) first = int(r.number(*f, ptr + "/first_frame", 0.0f, 1e7f));
+  const json& cameras = r.required(v, ptr, "cameras");
+  if (!cameras.is_array() || cameras.empty()) r.fail(ptr + "/cameras", "expected an array of cameras, one per frame");
+  Shot shot;
+  shot.photo_pattern = pattern;
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    ShotFrame frame;
+    frame.number = first + int(i);
+    frame.camera = camera_from_json(r, cameras[i], json_child(ptr + "/cameras", i));
+    frame.photo_path = frame_file(pattern, frame.number);
+    if (!fs::exists(frame.photo_path))
+      throw InputError(
+          frame.photo_path.string(), "",
+          fmt::format("frame {}'s photo (scene {}, /shot/photo) does not exist", frame.number, scene_path.string()));
+    shot.frames.push_back(std::move(frame));
+  }
+  return shot;
+}
+
+Scene load_shot_frame(const Scene& scene, size_t index) {
+  const ShotFrame& frame = scene.shot.frames.at(index);
+  Scene still = scene;
+  still.shot = {};
+  still.photo_path = frame.photo_path;
+  still.photo_clipped.clear();
+  still.photo = read_image(frame.photo_path, &still.photo_clipped);
+  check_photo_aspect(frame.photo_path, still.photo, frame.camera);
+  still.camera = Camera(frame.camera, still.photo.width, still.photo.height);
+  return still;
+}
+
 Scene load_scene(const fs::path& path, const Progress& progress) {
   const JsonReader r(path.string());
   const json root = JsonReader::parse_file(path);
   expect_format(r, root, "relight-scene/1");
-  r.warn_unknown_keys(root, "", {"format", "photo", "geometry", "camera", "lights", "background", "probes", "reference"});
+  r.warn_unknown_keys(root, "",
+                      {"format", "photo", "geometry", "camera", "lights", "background", "probes", "reference", "shot"});
 
   Scene scene;
   scene.path = path;
@@ -464,6 +508,7 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   }
   if (auto* bg = r.optional(root, "background")) scene.background = r.color(*bg, "/background");
   if (auto* reference = r.optional(root, "reference")) scene.reference = parse_reference(r, *reference);
+  if (auto* shot = r.optional(root, "shot")) scene.shot = parse_shot(r, *shot, path);
   std::vector<std::pair<const json*, std::string>> probe_specs;
   if (auto* probes = r.optional(root, "probes")) {
     if (!probes->is_array()) r.fail("/probes", "expected an array of probes");
@@ -516,6 +561,13 @@ std::string scene_to_json(const Scene& scene, const fs::path& folder) {
       j["reference"] = {{"object", ref.object}, {"albedo", v3(ref.albedo)}};
     else
       j["reference"] = {{"polygon", positions(ref.polygon)}, {"albedo", v3(ref.albedo)}};
+  }
+  if (!scene.shot.frames.empty()) {
+    json cameras = json::array();
+    for (const ShotFrame& frame : scene.shot.frames) cameras.push_back(camera_to_json(frame.camera));
+    j["shot"] = {{"photo", relative(scene.shot.photo_pattern)},
+                 {"first_frame", scene.shot.frames.front().number},
+                 {"cameras", cameras}};
   }
   if (!scene.probes.empty()) {
     j["probes"] = json::array();

@@ -17,6 +17,9 @@ class JsonReader;
 // naming the file, the JSON pointer and what was expected; Cancelled where
 // `progress` is cancelled while the geometry is read.
 Scene load_scene(const std::filesystem::path& path, const Progress& progress = Progress::silent());
+// Frame `index` of a shot as a still: the scene with that frame's photo and
+// camera (the photo read now, its aspect checked against the camera).
+Scene load_shot_frame(const Scene& scene, size_t index);
 
 Rig load_rig(const std::filesystem::path& path);
 

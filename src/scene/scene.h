@@ -29,6 +29,20 @@ struct AlbedoReference {
   std::vector<Vec2> colorchecker;  // empty, or the chart's 4 corners
 };
 
+// One frame of a shot (scene.json's optional `shot`): a photo of the same
+// scene from a moving camera.
+struct ShotFrame {
+  int number = 0;  // the frame's number, as the photo's file name gives it
+  std::filesystem::path photo_path;
+  CameraSpec camera;
+};
+
+// A tracked shot: its frames, in order, numbered on from the first.
+struct Shot {
+  std::filesystem::path photo_pattern;  // '#'s for the frame number
+  std::vector<ShotFrame> frames;        // empty: the scene is a still
+};
+
 struct Scene {
   std::filesystem::path path;  // the scene.json it came from
   Image photo;
@@ -42,6 +56,9 @@ struct Scene {
   Vec3 background = Vec3::Zero();
   std::vector<Probe> probes;
   std::optional<AlbedoReference> reference;  // scene.json's optional `reference`
+  // A tracked shot's frames (none: a still). Their photos are read one at a
+  // time (load_shot_frame), not with the scene.
+  Shot shot;
 };
 
 // A rig's new environment (FORMAT.md, "A new environment in a rig"): a
