@@ -45,3 +45,17 @@ foreach(frame 01 02 03)
     message(FATAL_ERROR "relight render --frames 1-3 wrote no frame ${frame}")
   endif()
 endforeach()
+
+# A tracked shot (tests/blender/tracked_shot.py): the camera dollied over
+# three Cycles frames and exported with --shot, then analysed by relight
+# (the albedo fused over the frames) and re-lit frame by frame.
+run(${blender} "${WORK}/scene.blend" --python "${SOURCE_DIR}/tests/blender/tracked_shot.py" -- "${exporter}"
+    "${WORK}/shot")
+run("${RELIGHT}" analyze "${WORK}/shot/scene.json" -o "${WORK}/shot_analysis" --spp 8)
+run("${RELIGHT}" render "${WORK}/shot/scene.json" --analysis "${WORK}/shot_analysis" --rig "${WORK}/rig.json"
+    -o "${WORK}/shot_relit/relit.####.exr")
+foreach(frame 0001 0002 0003)
+  if(NOT EXISTS "${WORK}/shot_relit/relit.${frame}.exr")
+    message(FATAL_ERROR "relight render of the tracked shot wrote no frame ${frame}")
+  endif()
+endforeach()

@@ -7,6 +7,7 @@
 # From the command line (exit 2 and one line on what is wrong with the scene or rig,
 # 1 on any other error):
 #   blender -b FILE.blend --python-exit-code 1 --python relight_export.py -- OUTDIR [--photo PHOTO]
+#   blender -b FILE.blend --python-exit-code 1 --python relight_export.py -- OUTDIR --shot render/photo.####.exr [--frames A-B]
 #   blender -b FILE.blend --python-exit-code 1 --python relight_export.py -- --export-rig RIG.json [--frames A-B]
 #   blender -b FILE.blend --python-exit-code 1 --python relight_export.py -- --import-rig RIG.json [--replace] [--save OUT.blend]
 #
@@ -30,6 +31,7 @@ import array
 import json
 import math
 import os
+import re
 import shutil
 import sys
 import tempfile
@@ -294,9 +296,52 @@ def check_photo_size(photo, resolution):
                           % (photo, width, height, resolution[0], resolution[1]))
 
 
-def export_scene(scene, outdir, photo=None):
-    """Writes OUTDIR/scene.json, OUTDIR/geometry.obj and copies the photo (and HDRI) there.
-    Checks first, so that a refused scene writes nothing."""
+def frame_file(pattern, frame):
+    """PATTERN's last run of '#' replaced by FRAME, zero-padded to as many digits (relight's and
+    Blender's convention: photo.####.exr, frame 7 -> photo.0007.exr)."""
+    folder, name = os.path.split(pattern)
+    runs = list(re.finditer("#+", name))
+    if not runs:
+        raise BridgeError("the shot's photos %s need '#'s for the frame number (photo.####.exr)" % pattern)
+    run = runs[-1]
+    return os.path.join(folder, name[:run.start()] + str(frame).zfill(run.end() - run.start()) + name[run.end():])
+
+
+def shot_block(scene, pattern, frames, metres=1.0):
+    """A tracked shot over FRAMES (first, last): the camera at each frame, and each frame's photo
+    (PATTERN's '#'s its number), which must exist and have the render's aspect. Returns the
+    scene.json's "shot" block and the photos' paths."""
+    first, last = frames
+    if last < first:
+        raise BridgeError("the shot's frames %d-%d are empty" % (first, last))
+    cameras, photos = [], []
+    current = scene.frame_current
+    try:
+        for frame in range(first, last + 1):
+            scene.frame_set(frame)
+            camera, resolution = camera_block(scene, metres)
+            photo = frame_file(pattern, frame)
+            if not os.path.isfile(photo):
+                raise BridgeError("frame %d's photo %s does not exist" % (frame, photo))
+            check_photo_size(photo, resolution)
+            cameras.append(camera)
+            photos.append(photo)
+    finally:
+        scene.frame_set(current)
+    block = {"photo": os.path.basename(pattern), "first_frame": first, "cameras": cameras}
+    return block, photos
+
+
+def export_scene(scene, outdir, photo=None, shot=None, frames=None):
+    """Writes OUTDIR/scene.json, OUTDIR/geometry.obj and copies the photo (and HDRI) there; with
+    SHOT (a photo pattern with '#'s), the camera of every frame of FRAMES (first, last; default the
+    scene's range) as a tracked shot, its photos copied too (the still photo: the first frame's by
+    default). Checks first, so that a refused scene writes nothing."""
+    shot_photos = []
+    if shot:
+        frames = frames or (scene.frame_start, scene.frame_end)
+        shot_doc, shot_photos = shot_block(scene, shot, frames, metres_per_unit(scene))
+        photo = photo or shot_photos[0]
     photo = photo or camera_photo(scene)
     if not photo:
         raise BridgeError("no photo: give one (--photo, or the exporter's Photo field) or set it as the "
@@ -316,6 +361,8 @@ def export_scene(scene, outdir, photo=None):
     photo_name = os.path.basename(photo)
     doc = {"format": "relight-scene/1", "photo": photo_name, "geometry": "geometry.obj", "camera": camera,
            "lights": lights}
+    if shot:
+        doc["shot"] = shot_doc
     target = os.path.join(outdir, "scene.json")
     # Everything is made in a scratch folder first: a scene refused on the way writes nothing.
     with tempfile.TemporaryDirectory() as scratch:
@@ -325,15 +372,17 @@ def export_scene(scene, outdir, photo=None):
             json.dump(doc, f, indent=2)
             f.write("\n")
         os.makedirs(outdir, exist_ok=True)
-        if os.path.abspath(os.path.dirname(photo)) != os.path.abspath(outdir):
-            shutil.copyfile(photo, os.path.join(outdir, photo_name))
+        for source in [photo] + shot_photos:
+            if os.path.abspath(os.path.dirname(source)) != os.path.abspath(outdir):
+                shutil.copyfile(source, os.path.join(outdir, os.path.basename(source)))
         for name in os.listdir(scratch):
             if name != "scene.json":
                 shutil.move(os.path.join(scratch, name), os.path.join(outdir, name))
         # scene.json last, renamed over: a reader never sees half a file, nor one whose files are missing.
         shutil.move(os.path.join(scratch, "scene.json"), target + ".part")
         os.replace(target + ".part", target)
-    print("relight_export: wrote %s (%d lights, %g m per Blender unit)" % (target, len(lights), metres))
+    print("relight_export: wrote %s (%d lights, %g m per Blender unit%s)"
+          % (target, len(lights), metres, ", a shot of %d frames" % len(shot_photos) if shot else ""))
     return target
 
 
@@ -701,17 +750,21 @@ def main(argv):
     parser.add_argument("outdir", nargs="?", help="folder to write scene.json, geometry.obj and the photo to")
     parser.add_argument("--photo", help="the HDR photo (default: the camera's background image)")
     parser.add_argument("--export-rig", metavar="RIG", help="instead: write the lights as a rig, animated ones keyed")
-    parser.add_argument("--frames", metavar="A-B", help="with --export-rig: the frames (default: the scene's range)")
+    parser.add_argument("--shot", metavar="PHOTOS",
+                        help="with OUTDIR: a tracked shot, each frame's photo PHOTOS with '#'s for the frame "
+                             "number (render/photo.####.exr); the camera exported at every frame")
+    parser.add_argument("--frames", metavar="A-B",
+                        help="with --export-rig or --shot: the frames (default: the scene's range)")
     parser.add_argument("--import-rig", metavar="RIG", help="instead: create the lights of RIG as Blender lights")
     parser.add_argument("--replace", action="store_true", help="with --import-rig: delete the scene's lights first")
     parser.add_argument("--save", metavar="BLEND", help="with --import-rig: save the result as BLEND")
     args = parser.parse_args(argv)
     try:
+        frames = None
+        if args.frames:
+            first, _, last = args.frames.partition("-")
+            frames = (int(first), int(last or first))
         if args.export_rig:
-            frames = None
-            if args.frames:
-                first, _, last = args.frames.partition("-")
-                frames = (int(first), int(last or first))
             export_rig(bpy.context.scene, os.path.abspath(args.export_rig), frames)
         elif args.import_rig:
             made = import_rig(args.import_rig, replace=args.replace)
@@ -719,7 +772,8 @@ def main(argv):
             if args.save:
                 bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args.save), check_existing=False)
         elif args.outdir:
-            export_scene(bpy.context.scene, os.path.abspath(args.outdir), args.photo and os.path.abspath(args.photo))
+            export_scene(bpy.context.scene, os.path.abspath(args.outdir), args.photo and os.path.abspath(args.photo),
+                         args.shot and os.path.abspath(args.shot), frames)
         else:
             parser.error("give OUTDIR, --export-rig RIG or --import-rig RIG")
     except (BridgeError, ValueError, OSError) as e:
