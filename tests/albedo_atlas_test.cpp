@@ -48,33 +48,6 @@ PixelSurfaces view_of(const Scene& scene, const RayScene& rays) {
   return PixelSurfaces::central_samples(GBuffer(scene.camera, rays, 1, 1, scene.path.string()));
 }
 
-// Pairs (pixel of `a`, pixel of `b`) that show the same surface point: b's
-// point projected into a, where a's pixel there sees the same triangle within 1 cm.
-std::vector<std::pair<size_t, size_t>> shared_points(const PixelSurfaces& a, const Camera& a_camera,
-                                                     const PixelSurfaces& b) {
-  std::vector<std::pair<size_t, size_t>> pairs;
-  for (size_t j = 0; j < b.surface.size(); ++j) {
-    if (!b.hit[j]) continue;
-    const auto at = a_camera.project(b.surface[j].position);
-    if (!at || at->x() < 0 || at->y() < 0 || at->x() >= a.width || at->y() >= a.height) continue;
-    const size_t i = size_t(int(at->y())) * a.width + size_t(int(at->x()));
-    if (a.hit[i] && a.surface[i].prim == b.surface[j].prim &&
-        (a.surface[i].position - b.surface[j].position).norm() < 0.01f)
-      pairs.emplace_back(i, j);
-  }
-  return pairs;
-}
-
-// Mean |a - b| over the pairs, relative to the mean of a.
-double relative_change(const Image& a, const Image& b, const std::vector<std::pair<size_t, size_t>>& pairs) {
-  double change = 0.0, level = 0.0;
-  for (const auto& [i, j] : pairs) {
-    change += (a.pixels[i] - b.pixels[j]).cwiseAbs().mean();
-    level += a.pixels[i].mean();
-  }
-  return level > 0.0 ? change / level : 0.0;
-}
-
 // Mean |a - truth| / mean truth over the pixels that see a surface.
 double relative_error(const Image& a, const Image& truth, const PixelSurfaces& view) {
   double error = 0.0, level = 0.0;
@@ -137,8 +110,8 @@ TEST(AlbedoAtlas, AveragesEachSurfaceOverTheFramesThatSeeIt) {
   for (size_t t = 0; t + 1 < frames.size(); ++t) {
     const auto pairs = shared_points(frames[t].view, frames[t].scene.camera, frames[t + 1].view);
     ASSERT_GT(pairs.size(), size_t(kWidth * kHeight / 2)) << "the frames share most of the view";
-    const double own = relative_change(frames[t].albedo, frames[t + 1].albedo, pairs);
-    const double atlas = relative_change(fused_albedo[t], fused_albedo[t + 1], pairs);
+    const double own = change_at_shared_points(frames[t].albedo, frames[t + 1].albedo, pairs);
+    const double atlas = change_at_shared_points(fused_albedo[t], fused_albedo[t + 1], pairs);
     std::printf("[ figures  ] frames %zu-%zu: albedo change at shared points %.3f (own), %.3f (fused)\n", t, t + 1, own,
                 atlas);
     EXPECT_LT(atlas, 0.3 * own);
@@ -188,9 +161,9 @@ TEST(AlbedoAtlas, ATrackedShotsAlbedoDoesNotFlicker) {
   EXPECT_LT(fused_error, own_error);
   for (size_t t = 0; t + 1 < frames.size(); ++t) {
     const auto pairs = shared_points(frames[t].view, frames[t].scene.camera, frames[t + 1].view);
-    const double photo = relative_change(photos[t], photos[t + 1], pairs);
-    const double own = relative_change(frames[t].albedo, frames[t + 1].albedo, pairs);
-    const double atlas = relative_change(fused_albedo[t], fused_albedo[t + 1], pairs);
+    const double photo = change_at_shared_points(photos[t], photos[t + 1], pairs);
+    const double own = change_at_shared_points(frames[t].albedo, frames[t + 1].albedo, pairs);
+    const double atlas = change_at_shared_points(fused_albedo[t], fused_albedo[t + 1], pairs);
     std::printf("[ figures  ] frames %zu-%zu, change at shared points: photo %.4f, albedo %.4f (own), %.4f (fused)\n",
                 t, t + 1, photo, own, atlas);
     EXPECT_LT(atlas, 0.5 * photo) << "the fused albedo changes less than the photos' own noise";

@@ -447,6 +447,18 @@ const std::vector<Row>& catalogue() {
        Command::analyze, "geometry.obj", "the geometry covers 0.5 % of the photo", 0},
       {"GeometryInMillimetres", geometry_in_millimetres, Command::analyze, "geometry.obj",
        "123 times as far; is the geometry in centimetres", 0},
+      {"ShotPhotoWithoutFrameNumber",
+       [](SceneFolder& f) { f.scene["shot"] = {{"photo", "photo.exr"}, {"cameras", {f.scene["camera"]}}}; },
+       Command::load, "scene.json", "/shot/photo: expected a file name with '#'s for the frame number"},
+      {"ShotWithoutCameras",
+       [](SceneFolder& f) { f.scene["shot"] = {{"photo", "photo.####.exr"}, {"cameras", json::array()}}; },
+       Command::load, "scene.json", "/shot/cameras: expected an array of cameras, one per frame"},
+      {"ShotFramePhotoMissing",
+       [](SceneFolder& f) {
+         fs::copy_file(f / "photo.exr", f / "photo.0001.exr");
+         f.scene["shot"] = {{"photo", "photo.####.exr"}, {"cameras", {f.scene["camera"], f.scene["camera"]}}};
+       },
+       Command::load, "photo.0002.exr", "frame 2's photo"},
   };
   return rows;
 }

@@ -93,6 +93,30 @@ Image AlbedoAtlas::albedo_for(const PixelSurfaces& view, const Image& own) const
   return out;
 }
 
+std::vector<std::pair<size_t, size_t>> shared_points(const PixelSurfaces& a, const Camera& a_camera,
+                                                     const PixelSurfaces& b) {
+  std::vector<std::pair<size_t, size_t>> pairs;
+  for (size_t j = 0; j < b.surface.size(); ++j) {
+    if (!b.hit[j]) continue;
+    const auto at = a_camera.project(b.surface[j].position);
+    if (!at || !(at->x() >= 0.0f && at->y() >= 0.0f && at->x() < float(a.width) && at->y() < float(a.height))) continue;
+    const size_t i = size_t(at->y()) * size_t(a.width) + size_t(at->x());
+    if (a.hit[i] && a.surface[i].prim == b.surface[j].prim &&
+        (a.surface[i].position - b.surface[j].position).norm() < 0.01f)
+      pairs.emplace_back(i, j);
+  }
+  return pairs;
+}
+
+double change_at_shared_points(const Image& a, const Image& b, const std::vector<std::pair<size_t, size_t>>& pairs) {
+  double change = 0.0, level = 0.0;
+  for (const auto& [i, j] : pairs) {
+    change += (a.pixels[i] - b.pixels[j]).cwiseAbs().mean();
+    level += a.pixels[i].mean();
+  }
+  return level > 0.0 ? change / level : 0.0;
+}
+
 std::vector<float> albedo_weights(const Analysis& analysis) {
   const Image& light = analysis.illumination.surface;
   std::vector<float> weight(light.size(), 0.0f);

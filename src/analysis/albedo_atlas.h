@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "analysis/analyze.h"
@@ -48,6 +49,16 @@ class AlbedoAtlas {
   std::vector<Vec3> sum_;        // weighted sum of the albedo, per texel
   std::vector<float> weight_;    // sum of the weights
 };
+
+// Pixel pairs (a's, b's) that show the same surface point in two frames:
+// b's point projected into a, where a's pixel there sees the same triangle
+// within 1 cm.
+std::vector<std::pair<size_t, size_t>> shared_points(const PixelSurfaces& a, const Camera& a_camera,
+                                                     const PixelSurfaces& b);
+// How much an image sequence changes from frame a to frame b where they show
+// the same surface: the mean |a - b| over the pairs, relative to a's mean
+// there (0 without pairs). Of a fused albedo, its flicker.
+double change_at_shared_points(const Image& a, const Image& b, const std::vector<std::pair<size_t, size_t>>& pairs);
 
 // How far each pixel's albedo is trusted, for the atlas: the illumination
 // squared (the albedo's noise is the photo's over the illumination) times the

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "analysis/albedo_atlas.h"
@@ -71,28 +72,54 @@ std::string summary(const Analysis& analysis) {
                      100.0 * analysis.residual);
 }
 
+// One frame as the shot's flicker is measured: what its pixels see, through
+// which camera, and an image of it.
+struct FrameImage {
+  PixelSurfaces view;
+  Camera camera;
+  Image image;
+};
+
+// Adds the change from the frame before to `frame` where both show the
+// same surface (change_at_shared_points) to `sum`; `before` becomes `frame`.
+void add_change(std::optional<FrameImage>& before, FrameImage frame, double& sum) {
+  if (before)
+    sum += change_at_shared_points(before->image, frame.image, shared_points(before->view, before->camera, frame.view));
+  before = std::move(frame);
+}
+
 // A tracked shot: each frame analysed into its folder (shot_frame_folder),
 // then the albedo fused over the frames (AlbedoAtlas) and each frame's
-// analysis saved again with its view of the fused albedo.
+// albedo replaced by its view of the fused one. Says how much the photos,
+// the frames' own albedos and the fused albedo change from frame to frame
+// where they show the same surface (the fused one's change is its flicker).
 void analyse_shot(const AnalyzeArgs& args, const Scene& scene, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<ShotFrame>& frames = scene.shot.frames;
   create_output_folder(args.out);
   AlbedoAtlas atlas(scene.mesh);
   {
+    // The texels are sized for the frames' pixels: the first frame's photo
+    // gives their size (the scene's still may be of another).
+    const Scene first = load_shot_frame(scene, 0);
     const RayScene rays(scene.mesh);
     for (const ShotFrame& frame : frames) {
-      const Camera camera(frame.camera, scene.camera.width(), scene.camera.height());
+      const Camera camera(frame.camera, first.camera.width(), first.camera.height());
       atlas.size_for(PixelSurfaces::central_samples(GBuffer(camera, rays, 1, 1, scene.path.string())), camera);
     }
   }
+  double photo_change = 0.0, own_change = 0.0, fused_change = 0.0;
+  std::optional<FrameImage> photo_before, own_before, fused_before;
   for (size_t k = 0; k < frames.size(); ++k) {
     const auto frame_start = std::chrono::steady_clock::now();
     LoadedScene s =
         prepare_for_analysis(load_shot_frame(scene, k), options_for(args, scene), progress, CameraUse::for_analysis);
     const fs::path folder = shot_frame_folder(args.out, frames[k].number);
     const Analysis analysis = analyse_into(folder, s, args, progress);
-    atlas.add(PixelSurfaces::central_samples(*s.gbuffer), analysis.albedo.albedo, albedo_weights(analysis));
+    const PixelSurfaces view = PixelSurfaces::central_samples(*s.gbuffer);
+    atlas.add(view, analysis.albedo.albedo, albedo_weights(analysis));
+    add_change(photo_before, {view, s.scene.camera, s.scene.photo}, photo_change);
+    add_change(own_before, {view, s.scene.camera, analysis.albedo.albedo}, own_change);
     std::printf("frame %d (%zu of %zu): %s written to %s in %.1f s\n", frames[k].number, k + 1, frames.size(),
                 summary(analysis).c_str(), folder.c_str(), seconds_since(frame_start));
     std::fflush(stdout);
@@ -100,12 +127,20 @@ void analyse_shot(const AnalyzeArgs& args, const Scene& scene, Progress& progres
   for (size_t k = 0; k < frames.size(); ++k) {
     const fs::path folder = shot_frame_folder(args.out, frames[k].number);
     const std::unique_ptr<AnalysedScene> analysed = AnalysedScene::from_folder(load_shot_frame(scene, k), folder);
-    const Image fused =
-        atlas.albedo_for(PixelSurfaces::central_samples(analysed->gbuffer()), analysed->analysis().albedo.albedo);
+    const PixelSurfaces view = PixelSurfaces::central_samples(analysed->gbuffer());
+    Image fused = atlas.albedo_for(view, analysed->analysis().albedo.albedo);
     replace_albedo(folder, fused, analysed->scene());
+    add_change(fused_before, {view, analysed->scene().camera, std::move(fused)}, fused_change);
   }
   std::printf("shot of %zu frames analysed into %s in %.1f s; the albedo fused over the frames (%zu texels)\n",
               frames.size(), args.out.c_str(), seconds_since(start), atlas.texels());
+  if (frames.size() > 1) {
+    const double n = double(frames.size() - 1);
+    std::printf(
+        "change from frame to frame where they show the same surface: photos %.1f %%, each frame's own "
+        "albedo %.1f %%, the fused albedo %.1f %%\n",
+        100.0 * photo_change / n, 100.0 * own_change / n, 100.0 * fused_change / n);
+  }
 }
 
 void run_analyze(const AnalyzeArgs& args, Progress& progress) {
