@@ -1,4 +1,4 @@
-// relight farm: an animated rig's frames as a Slurm job array, each task a
+// relight farm: an animated rig's (or a tracked shot's) frames as a Slurm job array, each task a
 // chunk of frames rendered by `relight render --frames` with the analysis
 // shared read-only; relight farm-check: which frames are done, and the
 // chunks of those that are not submitted again.
@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "analysis/analysis_folder.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -113,21 +114,38 @@ std::string job_script(const FarmArgs& args, const std::vector<std::string>& chu
   return s.str();
 }
 
-void run_farm(const FarmArgs& args, Progress&) {
-  const Rig rig = load_rig(args.rig);  // a bad rig is refused here, not on every node
-  if (!fs::is_regular_file(args.scene)) throw InputError(args.scene, "", "file not found");
-  if (!fs::is_regular_file(fs::path(args.analysis) / "analysis.json"))
-    throw InputError(args.analysis, "", "not an analysis folder (no analysis.json): run relight analyze first");
-  if (!has_frame_digits(args.out))
-    throw InputError(args.out, "", "the frames' files need '#' in the name for the frame number (relit.####.exr)");
-  std::optional<FrameRange> frames = args.frames.empty() ? keyed_frames(rig) : parse_frame_range(args.frames);
+// The frames a job renders: --frames, else a shot's frames, else the span
+// of the rig's keys.
+FrameRange frames_of_the_job(const FarmArgs& args, const Scene& scene, const Rig& rig) {
+  const std::vector<ShotFrame>& shot = scene.shot.frames;
+  std::optional<FrameRange> frames = !args.frames.empty() ? parse_frame_range(args.frames)
+                                     : !shot.empty()      ? FrameRange{shot.front().number, shot.back().number}
+                                                          : keyed_frames(rig);
   if (!frames)
     throw InputError("--frames", "",
                      args.frames.empty() ? "the rig has no keys: give the frames (1-120)"
                                          : "expected a frame (12) or a range (1-120), got '" + args.frames + "'");
+  return *frames;
+}
+
+void run_farm(const FarmArgs& args, Progress& progress) {
+  const Rig rig = load_rig(args.rig);  // a bad rig or scene is refused here, not on every node
+  const Scene scene = load_scene(args.scene, progress);
+  // A shot's analysis is a folder per frame (relight analyze of the shot).
+  const fs::path analysis_json =
+      (scene.shot.frames.empty() ? fs::path(args.analysis)
+                                 : shot_frame_folder(args.analysis, scene.shot.frames.front().number)) /
+      "analysis.json";
+  if (!fs::is_regular_file(analysis_json))
+    throw InputError(args.analysis, "",
+                     "not an analysis folder (no " + fs::relative(analysis_json, args.analysis).string() +
+                         "): run relight analyze first");
+  if (!has_frame_digits(args.out))
+    throw InputError(args.out, "", "the frames' files need '#' in the name for the frame number (relit.####.exr)");
+  const FrameRange frames = frames_of_the_job(args, scene, rig);
   std::vector<std::string> chunks;
-  for (int first = frames->first; first <= frames->last; first += args.chunk)
-    chunks.push_back(chunk_text(first, std::min(frames->last, first + args.chunk - 1)));
+  for (int first = frames.first; first <= frames.last; first += args.chunk)
+    chunks.push_back(chunk_text(first, std::min(frames.last, first + args.chunk - 1)));
 
   const fs::path job = absolute(args.job);
   fs::create_directories(job / "logs");
@@ -137,7 +155,7 @@ void run_farm(const FarmArgs& args, Progress&) {
                    {"rig", absolute(args.rig).string()},
                    {"analysis", absolute(args.analysis).string()},
                    {"output", absolute(args.out).string()},
-                   {"frames", {frames->first, frames->last}},
+                   {"frames", {frames.first, frames.last}},
                    {"chunks", chunks},
                    {"submissions", json::array()}};
   write_text_atomically(job / kScript, job_script(args, chunks, job));
@@ -150,10 +168,10 @@ void run_farm(const FarmArgs& args, Progress&) {
     manifest["submissions"].push_back(id);
     write_text_atomically(job / kManifest, manifest.dump(2) + "\n");
     std::printf("submitted job %s: %zu tasks of up to %d frames (frames %d-%d)\n", id.c_str(), chunks.size(),
-                args.chunk, frames->first, frames->last);
+                args.chunk, frames.first, frames.last);
   }
   std::printf("job written to %s (%zu tasks of up to %d frames, frames %d-%d)%s\n", (job / kScript).c_str(),
-              chunks.size(), args.chunk, frames->first, frames->last,
+              chunks.size(), args.chunk, frames.first, frames.last,
               args.submit ? "" : "; submit it with: sbatch --array=0-N job.sh, or relight farm ... --submit");
 }
 
@@ -224,14 +242,15 @@ void run_check(const CheckArgs& args, Progress&) {
 
 void add_farm_command(CLI::App& app, Action& action) {
   auto args = std::make_shared<FarmArgs>();
-  CLI::App* cmd = app.add_subcommand("farm", "write (and submit) an animated rig's frames as a Slurm job array");
+  CLI::App* cmd = app.add_subcommand(
+      "farm", "write (and submit) an animated rig's or a tracked shot's frames as a Slurm job array");
   cmd->add_option("scene", args->scene, "scene.json")->required();
   cmd->add_option("--rig", args->rig, "the animated rig.json")->required();
   cmd->add_option("--analysis", args->analysis, "the analysis folder (relight analyze), read by every task")
       ->required();
   cmd->add_option("-o,--out", args->out, "the frames' EXRs, '#'s for the frame number (out/relit.####.exr)")
       ->required();
-  cmd->add_option("--frames", args->frames, "the frames (1-120); default: the rig's keys' span");
+  cmd->add_option("--frames", args->frames, "the frames (1-120); default: a shot's frames, else the rig's keys' span");
   cmd->add_option("--chunk", args->chunk, "frames a task renders (the lights are cached within a task)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
