@@ -1,9 +1,10 @@
 # A tracked shot from Blender: the example scene's camera dollied sideways
 # (0.3 m) over frames 1-3, each frame rendered by Cycles (8 samples),
 # exported with the exporter's --shot: scene.json's shot must hold the
-# camera of every frame as Blender has it there, and the frames' photos
-# beside it. Longer and cleaner shots for the figures with --frames and
-# --samples (docs/benchmarks.md, "A tracked shot").
+# camera of every frame as Blender has it there, the frames' photos beside
+# it, and the still (photo and camera) the first frame. Longer and cleaner
+# shots for the figures with --frames and --samples (docs/benchmarks.md,
+# "A tracked shot").
 #   blender -b SCENE.blend --python-exit-code 1 --python tracked_shot.py -- EXPORTER OUTDIR [--frames N] [--samples S]
 import argparse
 import importlib.util
@@ -53,6 +54,9 @@ for frame, block in zip(frames, shot["cameras"]):
     where = camera.matrix_world.translation
     assert all(abs(a - b) < 1e-4 for a, b in zip(block["position"], where)), (frame, block["position"], where)
     assert os.path.isfile(os.path.join(outdir, "photo.%04d.exr" % frame)), frame
+with open(target) as f:
+    still = json.load(f)["camera"]
+assert still == shot["cameras"][0], "the still is the first frame"
 moved = shot["cameras"][-1]["position"][0] - shot["cameras"][0]["position"][0]
 assert abs(moved - 0.3) < 1e-4, moved
 print("tracked_shot: %d frames exported, the camera moved %.2f m" % (len(frames), moved))

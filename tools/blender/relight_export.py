@@ -335,13 +335,15 @@ def shot_block(scene, pattern, frames, metres=1.0):
 def export_scene(scene, outdir, photo=None, shot=None, frames=None):
     """Writes OUTDIR/scene.json, OUTDIR/geometry.obj and copies the photo (and HDRI) there; with
     SHOT (a photo pattern with '#'s), the camera of every frame of FRAMES (first, last; default the
-    scene's range) as a tracked shot, its photos copied too (the still photo: the first frame's by
-    default). Checks first, so that a refused scene writes nothing."""
+    scene's range) as a tracked shot, its photos copied too, the first frame (its photo and camera)
+    the scene's still. Checks first, so that a refused scene writes nothing."""
     shot_photos = []
     if shot:
+        if photo:
+            raise BridgeError("a shot's still is its first frame: give --shot or --photo, not both")
         frames = frames or (scene.frame_start, scene.frame_end)
         shot_doc, shot_photos = shot_block(scene, shot, frames, metres_per_unit(scene))
-        photo = photo or shot_photos[0]
+        photo = shot_photos[0]
     photo = photo or camera_photo(scene)
     if not photo:
         raise BridgeError("no photo: give one (--photo, or the exporter's Photo field) or set it as the "
@@ -350,6 +352,8 @@ def export_scene(scene, outdir, photo=None, shot=None, frames=None):
         raise BridgeError("the photo %s does not exist" % photo)
     metres = metres_per_unit(scene)
     camera, resolution = camera_block(scene, metres)
+    if shot:
+        camera = shot_doc["cameras"][0]
     check_photo_size(photo, resolution)
     rendered = rendered_objects(scene)
     lights = []
