@@ -72,19 +72,23 @@ std::string summary(const Analysis& analysis) {
                      100.0 * analysis.residual);
 }
 
-// One frame as the shot's flicker is measured: what its pixels see, through
-// which camera, and an image of it.
-struct FrameImage {
+// A frame as the shot's change from frame to frame is measured: what its
+// pixels see, through which camera, and its images (the photo, an albedo).
+struct FrameImages {
   PixelSurfaces view;
   Camera camera;
-  Image image;
+  std::vector<Image> images;
 };
 
-// Adds the change from the frame before to `frame` where both show the
-// same surface (change_at_shared_points) to `sum`; `before` becomes `frame`.
-void add_change(std::optional<FrameImage>& before, FrameImage frame, double& sum) {
-  if (before)
-    sum += change_at_shared_points(before->image, frame.image, shared_points(before->view, before->camera, frame.view));
+// Adds to sums[i] how much image i changed from the frame before to `frame`
+// where both show the same surface (change_at_shared_points); `before`
+// becomes `frame`.
+void add_changes(std::optional<FrameImages>& before, FrameImages frame, std::vector<double>& sums) {
+  if (before) {
+    const auto pairs = shared_points(before->view, before->camera, frame.view);
+    for (size_t i = 0; i < sums.size(); ++i)
+      sums[i] += change_at_shared_points(before->images[i], frame.images[i], pairs);
+  }
   before = std::move(frame);
 }
 
@@ -108,8 +112,8 @@ void analyse_shot(const AnalyzeArgs& args, const Scene& scene, Progress& progres
       atlas.size_for(PixelSurfaces::central_samples(GBuffer(camera, rays, 1, 1, scene.path.string())), camera);
     }
   }
-  double photo_change = 0.0, own_change = 0.0, fused_change = 0.0;
-  std::optional<FrameImage> photo_before, own_before, fused_before;
+  std::vector<double> change(2, 0.0), fused_change(1, 0.0);  // the photos', the own albedos'; the fused
+  std::optional<FrameImages> before;
   for (size_t k = 0; k < frames.size(); ++k) {
     const auto frame_start = std::chrono::steady_clock::now();
     LoadedScene s =
@@ -118,19 +122,19 @@ void analyse_shot(const AnalyzeArgs& args, const Scene& scene, Progress& progres
     const Analysis analysis = analyse_into(folder, s, args, progress);
     const PixelSurfaces view = PixelSurfaces::central_samples(*s.gbuffer);
     atlas.add(view, analysis.albedo.albedo, albedo_weights(analysis));
-    add_change(photo_before, {view, s.scene.camera, s.scene.photo}, photo_change);
-    add_change(own_before, {view, s.scene.camera, analysis.albedo.albedo}, own_change);
+    add_changes(before, {view, s.scene.camera, {s.scene.photo, analysis.albedo.albedo}}, change);
     std::printf("frame %d (%zu of %zu): %s written to %s in %.1f s\n", frames[k].number, k + 1, frames.size(),
                 summary(analysis).c_str(), folder.c_str(), seconds_since(frame_start));
     std::fflush(stdout);
   }
+  before.reset();
   for (size_t k = 0; k < frames.size(); ++k) {
     const fs::path folder = shot_frame_folder(args.out, frames[k].number);
     const std::unique_ptr<AnalysedScene> analysed = AnalysedScene::from_folder(load_shot_frame(scene, k), folder);
     const PixelSurfaces view = PixelSurfaces::central_samples(analysed->gbuffer());
     Image fused = atlas.albedo_for(view, analysed->analysis().albedo.albedo);
     replace_albedo(folder, fused, analysed->scene());
-    add_change(fused_before, {view, analysed->scene().camera, std::move(fused)}, fused_change);
+    add_changes(before, {view, analysed->scene().camera, {std::move(fused)}}, fused_change);
   }
   std::printf("shot of %zu frames analysed into %s in %.1f s; the albedo fused over the frames (%zu texels)\n",
               frames.size(), args.out.c_str(), seconds_since(start), atlas.texels());
@@ -139,7 +143,7 @@ void analyse_shot(const AnalyzeArgs& args, const Scene& scene, Progress& progres
     std::printf(
         "change from frame to frame where they show the same surface: photos %.1f %%, each frame's own "
         "albedo %.1f %%, the fused albedo %.1f %%\n",
-        100.0 * photo_change / n, 100.0 * own_change / n, 100.0 * fused_change / n);
+        100.0 * change[0] / n, 100.0 * change[1] / n, 100.0 * fused_change[0] / n);
   }
 }
 
