@@ -365,7 +365,13 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   // the closing pass then divides the photo in full.
   for (int it = 0; options.interreflection && it < passes; ++it) {
     const PhotoAlbedo bounce_albedo(scene.camera, gbuffer, bounce, result.albedo.mean, result.albedo.unseen_triangles);
+    // The images this pass replaces are let go before it makes their
+    // successors (the light bounces off `bounce`): the analysis's memory
+    // peaks in these passes.
+    result.illumination = {};
     IlluminationImages illum = render(bounce_albedo, "interreflection " + std::to_string(it + 1));
+    result.albedo.albedo = Image();
+    result.albedo.albedo_coverage = Image();
     AlbedoImages next = divide(illum);
     next.unseen_triangles = result.albedo.unseen_triangles;
     const float change = mean_abs_change(next.albedo, bounce, result.coverage);
@@ -378,29 +384,37 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     if (change < options.tolerance) break;
   }
 
+  bounce = Image();  // only the interreflection passes bounce light off it: its memory back
   // The photo rendered back from the analysis: the albedo on every surface,
   // no photo radiance (what rendering the scene's own lights gives).
-  const PhotoAlbedo final_albedo(scene.camera, gbuffer, result.albedo.albedo, result.albedo.mean,
-                                 result.albedo.unseen_triangles);
+  const auto render_back = [&](const IlluminationOptions& back_options, const std::string& label) {
+    const PhotoAlbedo final_albedo(scene.camera, gbuffer, result.albedo.albedo, result.albedo.mean,
+                                   result.albedo.unseen_triangles);
+    return render_with(final_albedo, nullptr, back_options, label);
+  };
   if (photo_radiance) {
     // Rendered in full, and the albedo divided by it once more: the fixed
     // point photo = albedo x L(albedo) of the renderer that re-lights, so
     // that rendering the scene's own lights with the analysis's seed gives
     // the photo back, its noise and all. The residual is taken before that
-    // division, from the albedo the photo's radiance gave.
-    IlluminationImages back = render_with(final_albedo, nullptr, illumination_options(options), "rendered back");
+    // division, from the albedo the photo's radiance gave. The images this
+    // pass replaces are let go as soon as they are not needed: the
+    // analysis's memory peaks here.
+    result.illumination = {};
+    IlluminationImages back = render_back(illumination_options(options), "rendered back");
     result.residual = residual_of(photo, result.albedo.albedo, back.surface, result.coverage);
-    AlbedoImages closing = divide(back);
-    closing.unseen_triangles = std::move(result.albedo.unseen_triangles);
+    std::vector<TriangleAlbedo> unseen = std::move(result.albedo.unseen_triangles);
+    result.albedo = {};
+    result.albedo = divide(back);
+    result.albedo.unseen_triangles = std::move(unseen);
     result.illumination = std::move(back);
-    result.albedo = std::move(closing);
     ++result.iterations;
     if (on_albedo) on_albedo(result.iterations, result.albedo);
   } else {
     // With fewer paths: the residual compares blocks, where noise averages out.
     IlluminationOptions back_options = illumination_options(options);
     back_options.paths_per_pixel = std::max(1, options.paths_per_pixel / kResidualPathsDivisor);
-    const Image back = render_with(final_albedo, nullptr, back_options, "residual").surface;
+    const Image back = render_back(back_options, "residual").surface;
     result.residual = residual_of(photo, result.albedo.albedo, back, result.coverage);
   }
   report_edge_offset(scene, result.albedo, result.coverage, options.align_edges);
