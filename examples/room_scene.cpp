@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "render/render_illumination.h"
+
 namespace relight::example {
 
 namespace {
@@ -87,6 +89,16 @@ Scene room_scene(int width, int height) {
 RoomAlbedo room_albedo() {
   TriangleMesh m;
   return RoomAlbedo(build_room(m));
+}
+
+Image room_photo(const Scene& room, const Camera& camera, const RayScene& rays, int paths, uint64_t seed) {
+  Lighting lighting;
+  lighting.lights = room.lights;
+  lighting.environment = Environment::constant(room.background);
+  const RoomAlbedo albedo = room_albedo();
+  const Integrator integrator(rays, lighting, &albedo);
+  const GBuffer samples(camera, rays, 4, 5, "room");
+  return synthesize_photo(samples, camera, integrator, albedo, paths, seed, Progress::silent());
 }
 
 Vec3 RoomAlbedo::at(const SurfacePoint& p) const {

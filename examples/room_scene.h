@@ -12,7 +12,7 @@
 namespace relight::example {
 
 // The room's geometry, camera (for a width x height photo), lamp and background.
-// The photo is left empty: render it with render_example_photo.
+// The photo is left empty: render it with room_photo.
 Scene room_scene(int width, int height);
 
 // The room's true albedo: a checker floor, plaster walls with a soft band,
@@ -26,6 +26,11 @@ class RoomAlbedo final : public SurfaceAlbedo {
   std::vector<int> object_;
 };
 RoomAlbedo room_albedo();
+
+// The room's photo through `camera` (the room's own, or another): path
+// traced with its lamp, its background and its true albedo, `paths` a
+// pixel over 4 sub-pixel samples.
+Image room_photo(const Scene& room, const Camera& camera, const RayScene& rays, int paths, uint64_t seed);
 
 // A re-lighting of the room: the lamp moved and warmer, a cool spot on the
 // ball, the background dimmed.

@@ -14,7 +14,6 @@
 
 #include "analysis/analysed_scene.h"
 #include "io/image_io.h"
-#include "render/render_illumination.h"
 #include "room_scene.h"
 
 using namespace relight;
@@ -123,18 +122,11 @@ TEST(AlbedoAtlas, AveragesEachSurfaceOverTheFramesThatSeeIt) {
 TEST(AlbedoAtlas, ATrackedShotsAlbedoDoesNotFlicker) {
   const Scene first = room_frame(0);
   const RayScene rays(first.mesh);
-  const example::RoomAlbedo albedo = example::room_albedo();
   std::vector<Frame> frames;
   std::vector<Image> photos;
   for (int step = 0; step < 4; ++step) {
     Scene scene = room_frame(step);
-    Lighting lighting;
-    lighting.lights = scene.lights;
-    lighting.environment = Environment::constant(scene.background);
-    const Integrator integrator(rays, lighting, &albedo);
-    const GBuffer photo_samples(scene.camera, rays, 4, 5, "room");
-    scene.photo =
-        synthesize_photo(photo_samples, scene.camera, integrator, albedo, 8, 3 + uint64_t(step), Progress::silent());
+    scene.photo = example::room_photo(scene, scene.camera, rays, 8, 3 + uint64_t(step));
     photos.push_back(scene.photo);
     AnalysisOptions options;
     options.strategy = Strategy::lights;  // the room has no probe: its lights as given

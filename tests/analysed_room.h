@@ -6,7 +6,6 @@
 #include <memory>
 
 #include "analysis/analysed_scene.h"
-#include "render/render_illumination.h"
 #include "room_scene.h"
 
 namespace relight::test {
@@ -15,16 +14,7 @@ inline const AnalysedScene& analysed_room() {
   static const std::unique_ptr<AnalysedScene> r = [] {
     Scene scene = example::room_scene(120, 90);
     scene.path = "room";
-    {
-      const RayScene rays(scene.mesh);
-      Lighting lighting;
-      lighting.lights = scene.lights;
-      lighting.environment = Environment::constant(scene.background);
-      const example::RoomAlbedo albedo = example::room_albedo();
-      const Integrator integrator(rays, lighting, &albedo);
-      const GBuffer photo_samples(scene.camera, rays, 4, 5, "room");
-      scene.photo = synthesize_photo(photo_samples, scene.camera, integrator, albedo, 4, 3, Progress::silent());
-    }
+    scene.photo = example::room_photo(scene, scene.camera, RayScene(scene.mesh), 4, 3);
     AnalysisOptions options;
     options.strategy = Strategy::lights;
     options.paths_per_pixel = 4;

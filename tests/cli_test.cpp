@@ -16,7 +16,6 @@
 #include "io/image_io.h"
 #include "io/mesh_io.h"
 #include "io/scene_io.h"
-#include "render/render_illumination.h"
 #include "room_scene.h"
 #include "scene_folder.h"
 
@@ -178,11 +177,6 @@ TEST(Cli, AShotIsAnalysedFrameByFrameAndRelitAsASequence) {
   const fs::path dir = temp_folder("shot");
   const Scene room = example::room_scene(160, 120);
   const RayScene rays(room.mesh);
-  Lighting lighting;
-  lighting.lights = room.lights;
-  lighting.environment = Environment::constant(room.background);
-  const example::RoomAlbedo albedo = example::room_albedo();
-  const Integrator integrator(rays, lighting, &albedo);
   nlohmann::json cameras = nlohmann::json::array();
   fs::create_directories(dir / "frames");
   for (int k = 0; k < 3; ++k) {
@@ -190,10 +184,8 @@ TEST(Cli, AShotIsAnalysedFrameByFrameAndRelitAsASequence) {
     const Vec3 right = (spec.look_at - spec.position).cross(spec.up).normalized();
     spec.position += 0.1f * float(k) * right;
     spec.look_at += 0.1f * float(k) * right;
-    const Camera camera(spec, 160, 120);
-    const GBuffer samples(camera, rays, 4, 5, "room");
     write_exr(frame_file(dir / "frames" / "photo.####.exr", k + 1),
-              synthesize_photo(samples, camera, integrator, albedo, 8, 3 + uint64_t(k), Progress::silent()));
+              example::room_photo(room, Camera(spec, 160, 120), rays, 8, 3 + uint64_t(k)));
     cameras.push_back(camera_to_json(spec));
   }
   std::ifstream in(kRoom / "scene.json");

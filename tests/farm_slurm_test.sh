@@ -36,12 +36,19 @@ same_frames() {  # every pixel equal (the files differ in their DateTime)
   done
 }
 
-"$relight" farm "$scene" --rig "$work/rig.json" --analysis "$work/analysis" -o "$work/farm/relit.##.exr" \
-  --chunk 2 --job "$work/job" --submit | tee "$work/submit.txt"
-job=$(sed -n 's/^submitted job \([0-9]*\).*/\1/p' "$work/submit.txt")
-[ -n "$job" ] || { echo "no job id"; exit 1; }
-wait_for_job "$job" 300
-"$relight" farm-check "$work/job"
+# Runs COMMAND (one that submits JOB_DIR's job, or part of it), waits for the
+# job Slurm gives it, and checks JOB_DIR's frames in.
+submit_and_check() {  # JOB_DIR COMMAND...
+  local job_dir=$1 job
+  shift
+  "$@" | tee "$job_dir.submitted.txt"
+  job=$(sed -n 's/^submitted job \([0-9]*\).*/\1/p' "$job_dir.submitted.txt")
+  [ -n "$job" ] || { echo "no job id from: $*"; exit 1; }
+  wait_for_job "$job" 300
+  "$relight" farm-check "$job_dir"
+}
+submit_and_check "$work/job" "$relight" farm "$scene" --rig "$work/rig.json" --analysis "$work/analysis" \
+  -o "$work/farm/relit.##.exr" --chunk 2 --job "$work/job" --submit
 same_frames
 
 rm "$work/farm/relit.03.exr" "$work/farm/relit.04.png"
@@ -52,10 +59,7 @@ set -e
 cat "$work/check.txt"
 [ "$status" = 3 ] || { echo "farm-check with frames missing exited $status, not 3"; exit 1; }
 grep -q "2 of 6 frames missing: 3-4 (tasks 1;" "$work/check.txt" || { echo "farm-check did not list frames 3-4"; exit 1; }
-"$relight" farm-check "$work/job" --resubmit | tee "$work/resubmit.txt"
-job=$(sed -n 's/^submitted job \([0-9]*\).*/\1/p' "$work/resubmit.txt")
-wait_for_job "$job" 300
-"$relight" farm-check "$work/job"
+submit_and_check "$work/job" "$relight" farm-check "$work/job" --resubmit
 same_frames
 # A tracked shot through the farm: four frames (the example photo from its
 # own camera, each frame's copy), analysed frame by frame with the albedo
@@ -76,12 +80,8 @@ SHOT
 shot="$work/shot/scene.json"
 "$relight" analyze "$shot" -o "$work/shot_analysis" --spp 2 --interreflection off >/dev/null 2>&1
 "$relight" render "$shot" --rig "$work/rig.json" --analysis "$work/shot_analysis" -o "$work/shot_local/relit.####.exr" >/dev/null
-"$relight" farm "$shot" --rig "$work/rig.json" --analysis "$work/shot_analysis" -o "$work/shot_farm/relit.####.exr" \
-  --chunk 2 --job "$work/shot_job" --submit | tee "$work/shot_submit.txt"
-job=$(sed -n 's/^submitted job \([0-9]*\).*/\1/p' "$work/shot_submit.txt")
-[ -n "$job" ] || { echo "no job id for the shot"; exit 1; }
-wait_for_job "$job" 300
-"$relight" farm-check "$work/shot_job"
+submit_and_check "$work/shot_job" "$relight" farm "$shot" --rig "$work/rig.json" --analysis "$work/shot_analysis" \
+  -o "$work/shot_farm/relit.####.exr" --chunk 2 --job "$work/shot_job" --submit
 for f in 0001 0002 0003 0004; do
   idiff -q -fail 0 -warn 0 "$work/shot_local/relit.$f.exr" "$work/shot_farm/relit.$f.exr" >/dev/null ||
     { echo "shot frame $f differs from the local render"; exit 1; }
