@@ -185,8 +185,7 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   batch.commit();
 }
 
-void replace_albedo(const fs::path& folder, const Image& albedo, const Scene& scene) {
-  const Analysis analysis = load_analysis(folder, scene);  // checked: the folder is this scene's
+void replace_albedo(const fs::path& folder, const Analysis& analysis, const Image& albedo) {
   if (albedo.width != analysis.albedo.albedo.width || albedo.height != analysis.albedo.albedo.height)
     throw std::invalid_argument("replace_albedo: the albedo is not the analysis's size");
   Image albedo_coverage = albedo;

@@ -21,10 +21,11 @@ void save_analysis(const std::filesystem::path& folder, const Analysis& analysis
 // (made from a scene.json, photo, geometry or probe that has changed since),
 // or holds images other than those its analysis.json describes.
 Analysis load_analysis(const std::filesystem::path& folder, const Scene& scene);
-// Replaces the albedo of an analysis folder made for this scene (a shot's
-// frame: its albedo fused over the frames), the folder's other images and
-// records kept; like save_analysis, all of it at once or nothing.
-void replace_albedo(const std::filesystem::path& folder, const Image& albedo, const Scene& scene);
+// Replaces the albedo of the analysis folder `analysis` was loaded from
+// (load_analysis; a shot's frame: its albedo fused over the frames), the
+// folder's other images and records kept; like save_analysis, all of it at
+// once or nothing.
+void replace_albedo(const std::filesystem::path& folder, const Analysis& analysis, const Image& albedo);
 // Whether the folder's analysis.json marks a preview (made of the photo
 // reduced: reduce_for_preview); false where it cannot be read (load_analysis
 // then says why).

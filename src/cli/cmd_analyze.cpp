@@ -133,7 +133,7 @@ void analyse_shot(const AnalyzeArgs& args, const Scene& scene, Progress& progres
     const std::unique_ptr<AnalysedScene> analysed = AnalysedScene::from_folder(load_shot_frame(scene, k), folder);
     const PixelSurfaces view = PixelSurfaces::central_samples(analysed->gbuffer());
     Image fused = atlas.albedo_for(view, analysed->analysis().albedo.albedo);
-    replace_albedo(folder, fused, analysed->scene());
+    replace_albedo(folder, analysed->analysis(), fused);
     add_changes(before, {view, analysed->scene().camera, {std::move(fused)}}, fused_change);
   }
   std::printf("shot of %zu frames analysed into %s in %.1f s; the albedo fused over the frames (%zu texels)\n",

@@ -118,14 +118,11 @@ std::string job_script(const FarmArgs& args, const std::vector<std::string>& chu
 // of the rig's keys.
 FrameRange frames_of_the_job(const FarmArgs& args, const Scene& scene, const Rig& rig) {
   const std::vector<ShotFrame>& shot = scene.shot.frames;
-  std::optional<FrameRange> frames = !args.frames.empty() ? parse_frame_range(args.frames)
-                                     : !shot.empty()      ? FrameRange{shot.front().number, shot.back().number}
-                                                          : keyed_frames(rig);
-  if (!frames)
-    throw InputError("--frames", "",
-                     args.frames.empty() ? "the rig has no keys: give the frames (1-120)"
-                                         : "expected a frame (12) or a range (1-120), got '" + args.frames + "'");
-  return *frames;
+  if (!args.frames.empty()) return frames_option(args.frames);
+  if (!shot.empty()) return {shot.front().number, shot.back().number};
+  const std::optional<FrameRange> keyed = keyed_frames(rig);
+  if (!keyed) throw InputError("--frames", "", "the rig has no keys: give the frames (1-120)");
+  return *keyed;
 }
 
 void run_farm(const FarmArgs& args, Progress& progress) {

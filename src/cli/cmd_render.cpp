@@ -59,8 +59,7 @@ std::optional<FrameRange> frames_to_render(const RenderArgs& args, const Rig& ri
           args.rig, keyed->first, keyed->last);
     return std::nullopt;
   }
-  const std::optional<FrameRange> frames = parse_frame_range(args.frames);
-  if (!frames) throw InputError("--frames", "", "expected a frame (12) or a range (1-120), got '" + args.frames + "'");
+  const FrameRange frames = frames_option(args.frames);
   if (!has_frame_digits(args.out))
     throw InputError(args.out, "",
                      "a frame sequence needs '#' in the output's name for the frame number "
@@ -114,10 +113,7 @@ void render_shot(const RenderArgs& args, const Scene& scene, const Rig& rig, con
   if (!has_frame_digits(args.out))
     throw InputError(args.out, "", "a shot renders a frame sequence: name the output with '#'s (relit.####.exr)");
   std::optional<FrameRange> only;
-  if (!args.frames.empty()) {
-    only = parse_frame_range(args.frames);
-    if (!only) throw InputError("--frames", "", "expected a frame (12) or a range (1-120), got '" + args.frames + "'");
-  }
+  if (!args.frames.empty()) only = frames_option(args.frames);
   create_output_folder(fs::path(args.out).parent_path().empty() ? fs::path(".") : fs::path(args.out).parent_path());
   const std::vector<ShotFrame>& frames = scene.shot.frames;
   int written = 0;

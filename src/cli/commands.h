@@ -15,6 +15,7 @@
 #include "analysis/camera_registration.h"
 #include "core/progress.h"
 #include "render/ray_scene.h"
+#include "scene/animation.h"
 
 namespace relight::cli {
 
@@ -82,6 +83,10 @@ struct HelpExample {
   const char* effect;
 };
 std::string help_footer(const char* description, std::initializer_list<HelpExample> examples);
+
+// The --frames option's range ("12" or "1-120"); InputError naming the
+// option where it is neither.
+FrameRange frames_option(const std::string& text);
 
 // Seconds from `start` to now.
 double seconds_since(std::chrono::steady_clock::time_point start);

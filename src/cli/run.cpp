@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/frame_files.h"
 #include "io/image_io.h"
 #include "io/mesh_io.h"
 #include "io/output_guard.h"
@@ -79,6 +80,12 @@ LoadedScene prepare_for_analysis(Scene&& scene, const AnalysisOptions& options, 
   if (camera == CameraUse::for_analysis) s.registered_camera = camera_for_analysis(s.scene, *s.rays, options, progress);
   s.gbuffer = std::make_unique<GBuffer>(scene_gbuffer(s.scene, *s.rays, options));
   return s;
+}
+
+FrameRange frames_option(const std::string& text) {
+  const std::optional<FrameRange> frames = parse_frame_range(text);
+  if (!frames) throw InputError("--frames", "", "expected a frame (12) or a range (1-120), got '" + text + "'");
+  return *frames;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
