@@ -67,7 +67,9 @@ std::vector<int> build_room(TriangleMesh& m) {
 
 Scene room_scene(int width, int height) {
   Scene s;
-  build_room(s.mesh);
+  const std::vector<int> objects = build_room(s.mesh);
+  s.mesh.objects = {"floor", "back_wall", "left_wall", "right_wall", "block", "ball"};  // in Object's order
+  s.mesh.triangle_objects.assign(objects.begin(), objects.end());
   CameraSpec camera;
   camera.position = Vec3(0.3f, -3.6f, 1.5f);
   camera.look_at = Vec3(0.0f, 0.3f, 0.6f);

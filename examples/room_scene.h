@@ -11,7 +11,9 @@
 
 namespace relight::example {
 
-// The room's geometry, camera (for a width x height photo), lamp and background.
+// The room's geometry (its objects named floor, back_wall, left_wall,
+// right_wall, block and ball), camera (for a width x height photo), lamp and
+// background.
 // The photo is left empty: render it with room_photo.
 Scene room_scene(int width, int height);
 

@@ -344,6 +344,50 @@ TEST_F(SceneFolder, EnabledNotABoolean) {
   EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/0/enabled");
 }
 
+// Two objects, the second's triangles in two materials (no .mtl file: the
+// names alone, as `usemtl` gives them).
+const char* kGlossyObj =
+    "o floor\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nusemtl tiles\nf 1 2 3\nf 1 3 4\n"
+    "o table\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nusemtl varnish\nf 5 6 7\nusemtl tiles\nf 5 7 8\n";
+
+TEST_F(SceneFolder, MaterialsShineByObjectOrMaterialName) {
+  write_text(dir / "geometry.obj", kGlossyObj);
+  scene["materials"] = json::parse(R"({"floor": {"roughness": 0.3}, "varnish": {"roughness": 0.1, "specular": 1}})");
+  write_text(scene_path(), scene.dump(2));
+  const Scene loaded = load_scene(scene_path());
+  ASSERT_EQ(loaded.mesh.triangles.size(), 4u);
+  ASSERT_EQ(loaded.mesh.materials, (std::vector<std::string>{"tiles", "varnish"}));
+  // The floor by its object's name (its material, tiles, is not named).
+  for (uint32_t t : {0u, 1u}) {
+    ASSERT_NE(loaded.gloss.at(t), nullptr);
+    EXPECT_EQ(*loaded.gloss.at(t), (Gloss{0.3f, 0.5f}));  // specular defaults to 0.5
+  }
+  ASSERT_NE(loaded.gloss.at(2), nullptr);  // the table's varnished triangle by its material
+  EXPECT_EQ(*loaded.gloss.at(2), (Gloss{0.1f, 1.0f}));
+  EXPECT_EQ(loaded.gloss.at(3), nullptr);  // its tiled one is matte
+  EXPECT_EQ(loaded.gloss.glossy_triangles(), 3u);
+  // Written back as read.
+  const json written = json::parse(scene_to_json(loaded, dir.path()));
+  EXPECT_EQ(written["materials"]["varnish"]["roughness"].get<float>(), 0.1f);
+  EXPECT_EQ(written["materials"]["floor"]["specular"].get<float>(), 0.5f);
+}
+
+TEST_F(SceneFolder, MaterialNamingNothingInTheGeometry) {
+  write_text(dir / "geometry.obj", kGlossyObj);
+  scene["materials"] = json::parse(R"({"flor": {"roughness": 0.3}})");
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/materials/flor", "no object or material named \"flor\"",
+                  "\"floor\"", "\"varnish\"");
+}
+
+TEST_F(SceneFolder, MaterialRoughnessOutOfRange) {
+  scene["materials"] = json::parse(R"({"floor": {"roughness": 1.5}})");
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/materials/floor/roughness");
+  scene["materials"] = json::parse(R"({"floor": {"specular": 0.5}})");
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/materials/floor", "roughness");
+  scene["materials"] = json::parse(R"({"floor": 0.3})");
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/materials/floor", "object");
+}
+
 TEST_F(SceneFolder, LightNotAnObject) {
   scene["lights"][1] = 42;
   EXPECT_MENTIONS(load_error(), scene_path().string(), "/lights/1", "object");

@@ -42,9 +42,8 @@ std::string analysis_images_hash(const std::function<fs::path(const char* name)>
 // unless forced, so that nothing of someone else's is overwritten.
 void expect_analysis_folder(const fs::path& folder) {
   if (force_outputs() || fs::exists(folder / "analysis.json")) return;
-  for (const char* name :
-       {"illumination.exr", "background.exr", "albedo.exr", "albedo_surface.exr", "albedo.png", "mask.exr",
-        "unreliable.exr"})
+  for (const char* name : {"illumination.exr", "background.exr", "albedo.exr", "albedo_surface.exr", "albedo.png",
+                           "mask.exr", "unreliable.exr", "specular.exr"})
     if (fs::exists(fs::symlink_status(folder / name)))
       throw InputError(folder.string(), "",
                        std::string("is not an analysis folder (no analysis.json) but holds ") + name +
@@ -110,10 +109,13 @@ AnalysisOptions read_options(const JsonReader& r, const nlohmann::json& j) {
   return o;
 }
 
-// 1 where the division was not trusted for its edges, 0 elsewhere.
-std::vector<float> unreliable_marks(const AlbedoImages& albedo) {
-  std::vector<float> marks(albedo.albedo.size(), 0.0f);
-  for (size_t i = 0; i < albedo.edge_mismatch.size() && i < marks.size(); ++i) marks[i] = albedo.edge_mismatch[i];
+// 1 where the division was not trusted for its edges or for a highlight,
+// 0 elsewhere.
+std::vector<float> unreliable_marks(const Analysis& a) {
+  std::vector<float> marks(a.albedo.albedo.size(), 0.0f);
+  for (size_t i = 0; i < a.albedo.edge_mismatch.size() && i < marks.size(); ++i) marks[i] = a.albedo.edge_mismatch[i];
+  for (size_t i = 0; i < a.highlights.size() && i < marks.size(); ++i)
+    marks[i] = std::max<float>(marks[i], a.highlights[i]);
   return marks;
 }
 
@@ -161,7 +163,8 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   write_exr(folder / "albedo_surface.exr", a.albedo.albedo);
   write_png(folder / "albedo.png", a.albedo.albedo_coverage);
   write_exr_scalar(folder / "mask.exr", a.coverage, w, h);
-  write_exr_scalar(folder / "unreliable.exr", unreliable_marks(a.albedo), w, h);
+  write_exr_scalar(folder / "unreliable.exr", unreliable_marks(a), w, h);
+  if (!a.specular.pixels.empty()) write_exr(folder / "specular.exr", a.specular);
 
   nlohmann::json j;
   j["format"] = "relight-analysis/1";
@@ -183,6 +186,9 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   j["unseen_triangles"] = std::move(triangles);
   write_text_atomically(folder / "analysis.json", json_text(j));
   batch.commit();
+  // An analysis of a scene that no longer shines leaves no highlights of an older one.
+  std::error_code ignored;
+  if (a.specular.pixels.empty()) fs::remove(folder / "specular.exr", ignored);
 }
 
 void replace_albedo(const fs::path& folder, const Analysis& analysis, const Image& albedo) {

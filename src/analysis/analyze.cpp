@@ -10,6 +10,7 @@
 #include "analysis/surface_albedo.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "render/specular.h"
 
 namespace relight {
 
@@ -252,6 +253,42 @@ class PlannedJob {
   Progress& progress_;
 };
 
+// The highlights of the photo's glossy surfaces under the scene's
+// `lighting`: a reflected ray that meets a surface the photo (or a probe)
+// shows takes the radiance shown there, elsewhere a path's light off the
+// mid grey surfaces unseen take before any albedo is known.
+Image photo_highlights(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Lighting& lighting,
+                       const PhotoRadiance* photo_radiance, const AnalysisOptions& options, Progress& progress) {
+  const UniformAlbedo unseen(AlbedoImages().mean);
+  IntegratorOptions integrator_options;
+  integrator_options.max_bounces = options.max_bounces;
+  integrator_options.gloss = &scene.gloss;
+  const Integrator integrator(rays, lighting, &unseen, integrator_options, photo_radiance);
+  const ReflectedRadiance surfaces = [&](const SurfacePoint& hit, Rng& rng) -> Vec3 {
+    if (photo_radiance)
+      if (const std::optional<Vec3> shown = photo_radiance->at(hit)) return *shown;
+    return unseen.at(hit).cwiseProduct(integrator.illumination(hit, rng));
+  };
+  const SpecularReflection specular(integrator, scene.gloss, surfaces);
+  return render_specular(gbuffer, scene.camera, specular, options.paths_per_pixel, options.seed, progress);
+}
+
+// Takes c x specular off each pixel of `photo` (c its coverage), and returns
+// 1 per pixel where that was over kHighlightShare of it.
+std::vector<uint8_t> take_off_highlights(Image& photo, const Image& specular, const std::vector<float>& coverage) {
+  std::vector<uint8_t> highlights(photo.size(), 0);
+  size_t marked = 0;
+  for (size_t i = 0; i < photo.size(); ++i) {
+    const Vec3 highlight = coverage[i] * specular.pixels[i];
+    if (highlight.isZero()) continue;
+    if (luminance(highlight) > kHighlightShare * luminance(photo.pixels[i])) highlights[i] = 1, ++marked;
+    photo.pixels[i] = (photo.pixels[i] - highlight).cwiseMax(0.0f);
+  }
+  spdlog::info("highlights taken off the photo; {:.2f} % of the view mostly highlight, filled from its surface",
+               100.0 * double(marked) / double(photo.size()));
+  return highlights;
+}
+
 }  // namespace
 
 Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const AnalysisOptions& requested,
@@ -267,26 +304,39 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   const Lighting lighting = strategy_lighting(scene, rays, options.strategy);
   IntegratorOptions integrator_options;
   integrator_options.max_bounces = options.max_bounces;
+  integrator_options.gloss = &scene.gloss;
   std::unique_ptr<RadiosityIllumination> radiosity;
   if (options.method == AnalysisMethod::radiosity)
     radiosity =
         std::make_unique<RadiosityIllumination>(scene, rays, gbuffer, lighting, radiosity_options(options),
                                                 options.direct_per_pixel, illumination_options(options), progress);
-  // The photo in the probes' units where its exposure is not theirs: the
-  // light it bounces must be in the units of the light the probes give.
-  Image photo_divided;
-  if (const auto exposure = photo_exposure_against_the_probes(scene, rays, gbuffer)) {
+  // The photo as it is divided: in the probes' units where its exposure is
+  // not theirs (the light it bounces must be in the units of the light the
+  // probes give), and less the highlights of glossy surfaces (below).
+  const bool glossy = sees_gloss(gbuffer, scene.gloss);
+  Image photo_own;
+  const auto exposure = photo_exposure_against_the_probes(scene, rays, gbuffer);
+  if (exposure || glossy) photo_own = scene.photo;
+  if (exposure) {
     result.photo_exposure = *exposure;
-    photo_divided = scene.photo;
-    apply_exposure(photo_divided, exposure->cwiseInverse());
+    apply_exposure(photo_own, exposure->cwiseInverse());
   }
-  const Image& photo = result.photo_exposure != Vec3::Ones() ? photo_divided : scene.photo;
+  const Image& photo = exposure || glossy ? photo_own : scene.photo;
   // Light bounced off what the photo shows is the photo's radiance there;
   // `albedo` then matters only on the surfaces the camera does not see.
   std::unique_ptr<PhotoRadiance> photo_radiance;
   if (result.options.bounce_source == BounceSource::photo) {
     photo_radiance = std::make_unique<PhotoRadiance>(scene.camera, gbuffer, photo, scene.probes, rays, scene.lights);
     spdlog::info("photo radiance usable on {:.1f} % of the geometry's pixels", 100.0 * photo_radiance->usable_share());
+  }
+  std::vector<uint8_t> unreliable = scene.photo_clipped;
+  if (glossy) {
+    // The highlights are taken off the photo in place: the photo's radiance
+    // reads it, and what a surface bounces on is its diffuse light.
+    result.specular = photo_highlights(scene, rays, gbuffer, lighting, photo_radiance.get(), options, progress);
+    result.highlights = take_off_highlights(photo_own, result.specular, result.coverage);
+    if (unreliable.empty()) unreliable.assign(result.highlights.size(), 0);
+    for (size_t i = 0; i < unreliable.size(); ++i) unreliable[i] |= result.highlights[i];
   }
   // The illumination with `albedo` on the surfaces light bounces off (and
   // with the photo's radiance where `known` gives it).
@@ -326,9 +376,8 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     IlluminationAlignment::Aligned aligned = alignment.align(illumination.surface);
     AlbedoImages albedo =
         options.align_edges
-            ? recover_albedo(photo, scene.photo_clipped, {std::move(aligned.illumination), illumination.background},
-                             gbuffer)
-            : recover_albedo(photo, scene.photo_clipped, illumination, gbuffer);
+            ? recover_albedo(photo, unreliable, {std::move(aligned.illumination), illumination.background}, gbuffer)
+            : recover_albedo(photo, unreliable, illumination, gbuffer);
     albedo.edge_mismatch = std::move(aligned.moved);
     albedo.edge_offset_px = aligned.motion_px;
     return albedo;

@@ -104,7 +104,19 @@ struct Analysis {
   // scene's: registered to the photo (register_when_off). Every render of
   // the analysis takes it.
   std::optional<CameraSpec> registered_camera;
+  // Where the scene has glossy surfaces: their highlights under the photo's
+  // light (render/specular.h; mean over each pixel's geometry samples),
+  // taken off the photo before it was divided, and 1 per pixel where the
+  // highlight is most of what the photo shows there (the albedo filled from
+  // its surface instead). Empty where every surface is matte.
+  Image specular;
+  std::vector<uint8_t> highlights;
 };
+
+// The share of a pixel's photo (luminance) above which its highlight makes
+// it unreliable: the albedo would be the small difference of two large,
+// uncertain values.
+inline constexpr float kHighlightShare = 0.5f;
 
 // The camera an analysis with `options` sees `scene` through: registered
 // to the photo where it is visibly off and the options allow (the scene's

@@ -374,11 +374,13 @@ std::optional<CameraSpec> register_when_off(Scene& scene, const RayScene& rays, 
     return std::nullopt;
   }
   const float off_px = view_difference_px(r.before, r.after, w, h);
-  if (off_px <= kVisiblyOffPx) {
+  const bool better = r.mismatch_after_px <= (1.0f - kVisiblyBetterShare) * r.mismatch_before_px;
+  if (off_px <= kVisiblyOffPx || !better) {
     scene.camera = Camera(r.before, w, h);
-    spdlog::info("camera: the photo's edges meet the geometry's (edge mismatch {:.2f} px; a registered camera would "
-                 "see {:.2f} px from it): kept as given",
-                 r.mismatch_before_px, off_px);
+    spdlog::info(
+        "camera: the photo's edges meet the geometry's (edge mismatch {:.2f} px; a registered camera would "
+        "see {:.2f} px from it, its edge mismatch {:.2f} px): kept as given",
+        r.mismatch_before_px, off_px, r.mismatch_after_px);
     return std::nullopt;
   }
   spdlog::warn(

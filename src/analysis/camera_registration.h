@@ -87,6 +87,12 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
 // or a camera off by more than registration reaches), the camera stays as
 // given, with a warning for the latter.
 constexpr float kVisiblyOffPx = 1.5f;
+// And only where the registered camera's edges meet the photo's visibly
+// better: the edge mismatch falls by this share of its value at least. A
+// camera truly a few pixels off falls by half or more (docs/benchmarks.md);
+// one moved by the edge fit's noise gains a few percent (a 320 x 240
+// photo's exact camera: its view moved 2 px, its mismatch 0.90 -> 0.88 px).
+constexpr float kVisiblyBetterShare = 0.1f;
 std::optional<CameraSpec> register_when_off(Scene& scene, const RayScene& rays, Progress& progress);
 
 }  // namespace relight

@@ -151,10 +151,12 @@ void drop_degenerate_triangles(const std::string& name, TriangleMesh& mesh) {
       continue;
     }
     if (mesh.has_objects()) mesh.triangle_objects[kept] = mesh.triangle_objects[t];
+    if (mesh.has_materials()) mesh.triangle_materials[kept] = mesh.triangle_materials[t];
     mesh.triangles[kept++] = mesh.triangles[t];
   }
   mesh.triangles.resize(kept);
   if (!mesh.triangle_objects.empty()) mesh.triangle_objects.resize(kept);
+  if (!mesh.triangle_materials.empty()) mesh.triangle_materials.resize(kept);
   spdlog::warn("{}: dropped {} degenerate (zero-area) triangles", name, bad.size());
 }
 
@@ -242,8 +244,22 @@ std::vector<PlacedMesh> placed_meshes(const std::string& name, const aiScene& ai
   return placed;
 }
 
+// The material of Assimp's mesh `m` as the file names it: its index in
+// `names` (added there the first time), or kNoMaterial where the file gives
+// none (Assimp's placeholder).
+uint32_t material_of(const aiScene& ai, unsigned m, std::vector<std::string>& names,
+                     std::unordered_map<std::string, uint32_t>& index) {
+  const unsigned k = ai.mMeshes[m]->mMaterialIndex;
+  if (k >= ai.mNumMaterials || !ai.mMaterials[k]) return TriangleMesh::kNoMaterial;
+  const std::string name = ai.mMaterials[k]->GetName().C_Str();
+  if (name.empty() || name == AI_DEFAULT_MATERIAL_NAME) return TriangleMesh::kNoMaterial;
+  const auto [it, added] = index.try_emplace(name, uint32_t(names.size()));
+  if (added) names.push_back(name);
+  return it->second;
+}
+
 // The file through Assimp, flattened to one mesh in the world frame, each
-// triangle keeping the name of its object; throws InputError.
+// triangle keeping the name of its object and its material; throws InputError.
 TriangleMesh read_with_assimp(const fs::path& path) {
   const std::string name = path.string();
   Assimp::Importer importer;
@@ -262,6 +278,7 @@ TriangleMesh read_with_assimp(const fs::path& path) {
   const std::vector<PlacedMesh> placed = placed_meshes(name, *ai);
   TriangleMesh mesh;
   std::unordered_map<std::string, uint32_t> object_index;  // a scene may have thousands of objects
+  std::unordered_map<std::string, uint32_t> material_index;
   bool all_have_normals = true;
   for (const PlacedMesh& p : placed) {
     const aiMesh* am = ai->mMeshes[p.mesh];
@@ -290,6 +307,7 @@ TriangleMesh read_with_assimp(const fs::path& path) {
     }
     const auto [object, added] = object_index.try_emplace(p.object, uint32_t(mesh.objects.size()));
     if (added) mesh.objects.push_back(p.object);
+    const uint32_t material = material_of(*ai, m, mesh.materials, material_index);
     for (unsigned f = 0; f < am->mNumFaces; ++f) {
       const aiFace& face = am->mFaces[f];
       if (face.mNumIndices != 3) continue;
@@ -299,6 +317,7 @@ TriangleMesh read_with_assimp(const fs::path& path) {
                            fmt::format("refers to vertex {} of {}", face.mIndices[k], am->mNumVertices));
       mesh.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
       mesh.triangle_objects.push_back(object->second);
+      mesh.triangle_materials.push_back(material);
     }
   }
   return mesh;
@@ -326,18 +345,38 @@ bool take_array(std::string_view& in, std::vector<T>& v) {
   return true;
 }
 
+// Names joined with a '\0' after each, and split again.
+std::vector<char> joined_names(const std::vector<std::string>& names) {
+  std::vector<char> out;
+  for (const std::string& n : names) {
+    out.insert(out.end(), n.begin(), n.end());
+    out.push_back('\0');
+  }
+  return out;
+}
+
+std::vector<std::string> split_names(const std::vector<char>& joined) {
+  std::vector<std::string> names;
+  for (auto begin = joined.begin(); begin != joined.end();) {
+    const auto end = std::find(begin, joined.end(), '\0');
+    names.emplace_back(begin, end);
+    begin = end == joined.end() ? end : end + 1;
+  }
+  return names;
+}
+
 std::string encode_reading(const fs::path& path) {
   std::string out;
   try {
     const TriangleMesh mesh = read_with_assimp(path);
-    out = "M";
+    out.push_back('M');
     append_array(out, mesh.positions);
     append_array(out, mesh.normals);
     append_array(out, mesh.triangles);
     append_array(out, mesh.triangle_objects);
-    std::string names;
-    for (const std::string& object : mesh.objects) names += object + '\0';
-    append_array(out, std::vector<char>(names.begin(), names.end()));
+    append_array(out, mesh.triangle_materials);
+    append_array(out, joined_names(mesh.objects));
+    append_array(out, joined_names(mesh.materials));
   } catch (const InputError& e) {
     out = "E" + e.where() + '\0' + e.message();
   }
@@ -354,15 +393,13 @@ TriangleMesh decode_reading(const std::string& name, std::string_view in) {
   TriangleMesh mesh;
   if (in.empty() || in[0] != 'M') throw InputError(name, "", "the mesh reader returned nothing");
   in.remove_prefix(1);
-  std::vector<char> names;
+  std::vector<char> objects, materials;
   if (!take_array(in, mesh.positions) || !take_array(in, mesh.normals) || !take_array(in, mesh.triangles) ||
-      !take_array(in, mesh.triangle_objects) || !take_array(in, names))
+      !take_array(in, mesh.triangle_objects) || !take_array(in, mesh.triangle_materials) || !take_array(in, objects) ||
+      !take_array(in, materials))
     throw InputError(name, "", "the mesh reader returned a cut-off mesh");
-  for (auto begin = names.begin(); begin != names.end();) {
-    const auto end = std::find(begin, names.end(), '\0');
-    mesh.objects.emplace_back(begin, end);
-    begin = end == names.end() ? end : end + 1;
-  }
+  mesh.objects = split_names(objects);
+  mesh.materials = split_names(materials);
   return mesh;
 }
 
@@ -400,6 +437,9 @@ TriangleMesh load_mesh(const fs::path& path, const Progress& progress) {
     throw InputError(name, "", "the mesh reader returned normals that do not match the vertices");
   for (uint32_t object : mesh.triangle_objects)
     if (object >= mesh.objects.size()) throw InputError(name, "", "the mesh reader returned an unnamed object");
+  for (uint32_t material : mesh.triangle_materials)
+    if (material != TriangleMesh::kNoMaterial && material >= mesh.materials.size())
+      throw InputError(name, "", "the mesh reader returned an unnamed material");
   drop_degenerate_triangles(name, mesh);
   if (const size_t edges = count_non_manifold_edges(mesh))
     spdlog::warn("{}: {} edge{} shared by three or more triangles (non-manifold); rendered as two-sided surfaces",

@@ -391,16 +391,56 @@ AlbedoReference parse_reference(const JsonReader& r, const json& v) {
   return ref;
 }
 
+// scene.json's `materials`: {"NAME": {"roughness": r, "specular": s}, ...},
+// NAME an object or material of the geometry (check_material_names).
+std::map<std::string, Gloss> parse_materials(const JsonReader& r, const json& v) {
+  r.expect_object(v, "/materials");
+  constexpr size_t kMaxMaterials = 10000;  // SurfaceGloss keeps a 16-bit index
+  if (v.size() > kMaxMaterials) r.fail("/materials", fmt::format("has over {} entries", kMaxMaterials));
+  std::map<std::string, Gloss> materials;
+  for (const auto& [name, m] : v.items()) {
+    const std::string ptr = json_child("/materials", name);
+    r.expect_object(m, ptr);
+    r.warn_unknown_keys(m, ptr, {"roughness", "specular"});
+    Gloss gloss;
+    gloss.roughness = r.number(r.required(m, ptr, "roughness"), ptr + "/roughness", 0.0f, 1.0f);
+    if (const json* specular = r.optional(m, "specular"))
+      gloss.specular = r.number(*specular, ptr + "/specular", 0.0f, 1.0f);
+    materials.emplace(name, gloss);
+  }
+  return materials;
+}
+
+// The names of the geometry's objects (or materials), the first dozen, for
+// an error that a name is not among them.
+std::string some_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t i = 0; i < names.size() && i < 12; ++i) out += (i ? ", \"" : "\"") + names[i] + "\"";
+  if (names.size() > 12) out += fmt::format(" and {} more", names.size() - 12);
+  return out.empty() ? "none named" : out;
+}
+
+// Every name in `materials` must be an object or a material of the geometry.
+void check_material_names(const JsonReader& r, const std::map<std::string, Gloss>& materials, const fs::path& geometry,
+                          const TriangleMesh& mesh) {
+  for (const auto& [name, gloss] : materials) {
+    const auto named = [&](const std::vector<std::string>& names) {
+      return std::find(names.begin(), names.end(), name) != names.end();
+    };
+    if (named(mesh.objects) || named(mesh.materials)) continue;
+    r.fail(json_child("/materials", name),
+           fmt::format("{} has no object or material named \"{}\" (its objects: {}; its materials: {})",
+                       geometry.string(), name, some_names(mesh.objects), some_names(mesh.materials)));
+  }
+}
+
 // A reference object must be one the geometry names.
 void check_reference_object(const JsonReader& r, const AlbedoReference& ref, const fs::path& geometry,
                             const TriangleMesh& mesh) {
   if (ref.object.empty()) return;
   if (std::find(mesh.objects.begin(), mesh.objects.end(), ref.object) != mesh.objects.end()) return;
-  std::string names;
-  for (size_t i = 0; i < mesh.objects.size() && i < 12; ++i) names += (i ? ", \"" : "\"") + mesh.objects[i] + "\"";
-  if (mesh.objects.size() > 12) names += fmt::format(" and {} more", mesh.objects.size() - 12);
   r.fail("/reference/object", fmt::format("{} has no object named \"{}\" (its objects: {})", geometry.string(),
-                                          ref.object, names.empty() ? "none named" : names));
+                                          ref.object, some_names(mesh.objects)));
 }
 
 // A photo cropped (say to 16:9) after the camera was matched on the whole
@@ -485,8 +525,9 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   const JsonReader r(path.string());
   const json root = JsonReader::parse_file(path);
   expect_format(r, root, "relight-scene/1");
-  r.warn_unknown_keys(root, "",
-                      {"format", "photo", "geometry", "camera", "lights", "background", "probes", "reference", "shot"});
+  r.warn_unknown_keys(
+      root, "",
+      {"format", "photo", "geometry", "camera", "lights", "background", "probes", "reference", "shot", "materials"});
 
   Scene scene;
   scene.path = path;
@@ -509,6 +550,7 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   if (auto* bg = r.optional(root, "background")) scene.background = r.color(*bg, "/background");
   if (auto* reference = r.optional(root, "reference")) scene.reference = parse_reference(r, *reference);
   if (auto* shot = r.optional(root, "shot")) scene.shot = parse_shot(r, *shot, path);
+  if (auto* materials = r.optional(root, "materials")) scene.materials = parse_materials(r, *materials);
   std::vector<std::pair<const json*, std::string>> probe_specs;
   if (auto* probes = r.optional(root, "probes")) {
     if (!probes->is_array()) r.fail("/probes", "expected an array of probes");
@@ -521,6 +563,8 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   scene.camera = Camera(camera, scene.photo.width, scene.photo.height);
   scene.mesh = load_mesh(scene.geometry_path, progress);
   if (scene.reference) check_reference_object(r, *scene.reference, scene.geometry_path, scene.mesh);
+  check_material_names(r, scene.materials, scene.geometry_path, scene.mesh);
+  scene.gloss = SurfaceGloss(scene.materials, scene.mesh);
   for (const auto& [spec, ptr] : probe_specs) scene.probes.push_back(parse_probe(r, *spec, ptr, path));
   return scene;
 }
@@ -562,6 +606,8 @@ std::string scene_to_json(const Scene& scene, const fs::path& folder) {
     else
       j["reference"] = {{"polygon", positions(ref.polygon)}, {"albedo", v3(ref.albedo)}};
   }
+  for (const auto& [name, gloss] : scene.materials)
+    j["materials"][name] = {{"roughness", gloss.roughness}, {"specular", gloss.specular}};
   if (!scene.shot.frames.empty()) {
     json cameras = json::array();
     for (const ShotFrame& frame : scene.shot.frames) cameras.push_back(camera_to_json(frame.camera));

@@ -53,7 +53,8 @@ const IlluminationImages& FrameSequence::light_layer(const Light& light, bool mo
   }
   Lighting lighting;
   lighting.lights = {unit_light(light)};
-  if (moving && !kept_paths_tried_) {
+  // Kept paths keep no glossy surface's highlight of the lights along them.
+  if (moving && !kept_paths_tried_ && analysed_.scene().gloss.all_matte()) {
     kept_paths_tried_ = true;
     kept_paths_ = std::make_unique<KeptPaths>(illumination_.keep_paths(analysed_.gbuffer(), moving_options_, progress));
     if (kept_paths_->within_budget()) {
@@ -102,7 +103,11 @@ Image FrameSequence::render(int frame, Progress& progress) {
     if (keyed(i) && !lit(rig.lights[i])) kept_layer(rig.lights[i], moving_[i]);
   // The other layers are of places the lights have left.
   std::erase_if(lights_, [&](const LightLayer& layer) { return layer.last_used != calls_; });
-  return relit_image(photo_layers_, analysed_.analysis().coverage, light, rig);
+  Image relit = relit_image(photo_layers_, analysed_.analysis().coverage, light, rig);
+  add_highlights(relit, analysed_.analysis().coverage,
+                 illumination_.highlights(analysed_.gbuffer(), analysed_.scene().camera,
+                                          illumination_.rig_lighting(rig), options_, progress));
+  return relit;
 }
 
 }  // namespace relight

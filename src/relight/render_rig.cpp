@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "render/specular.h"
+
 namespace relight {
 
 RelitLayers photo_layers(const Scene& scene, const Analysis& analysis) {
@@ -75,20 +77,24 @@ Lighting NewIllumination::rig_lighting(const Rig& rig) const {
 IlluminationImages NewIllumination::render(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
                                            const RenderOptions& options, Progress& progress, const std::string& label,
                                            bool first_surface_lights, const KeptPaths* kept) const {
-  IntegratorOptions integrator_options;
-  integrator_options.max_bounces = options.max_bounces;
-  integrator_options.first_surface_lights = first_surface_lights;
-  const Integrator integrator(analysed_.rays(), lighting, &bounce_albedo_, integrator_options);
+  IntegratorOptions paths = integrator_options(options);
+  paths.first_surface_lights = first_surface_lights;
+  const Integrator integrator(analysed_.rays(), lighting, &bounce_albedo_, paths);
   return render_illumination(gbuffer, camera, integrator, illumination_options(options), progress, label, nullptr,
                              kept);
 }
 
 KeptPaths NewIllumination::keep_paths(const GBuffer& gbuffer, const RenderOptions& options, Progress& progress) const {
-  IntegratorOptions integrator_options;
-  integrator_options.max_bounces = options.max_bounces;
   const Lighting none;
-  const Integrator paths(analysed_.rays(), none, &bounce_albedo_, integrator_options);
+  const Integrator paths(analysed_.rays(), none, &bounce_albedo_, integrator_options(options));
   return KeptPaths(gbuffer, paths, illumination_options(options), progress);
+}
+
+IntegratorOptions NewIllumination::integrator_options(const RenderOptions& options) const {
+  IntegratorOptions paths;
+  paths.max_bounces = options.max_bounces;
+  paths.gloss = &analysed_.scene().gloss;
+  return paths;
 }
 
 IlluminationOptions NewIllumination::illumination_options(const RenderOptions& options) const {
@@ -105,11 +111,34 @@ Image NewIllumination::render_background(const GBuffer& gbuffer, const Camera& c
   return relight::render_background(gbuffer, camera, Integrator(analysed_.rays(), lighting, &bounce_albedo_));
 }
 
+Image NewIllumination::highlights(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
+                                  const RenderOptions& options, Progress& progress) const {
+  const SurfaceGloss& gloss = analysed_.scene().gloss;
+  if (!sees_gloss(gbuffer, gloss)) return Image();
+  const Integrator integrator(analysed_.rays(), lighting, &bounce_albedo_, integrator_options(options));
+  const ReflectedRadiance surfaces = [&](const SurfacePoint& hit, Rng& rng) -> Vec3 {
+    return bounce_albedo_.at(hit).cwiseProduct(integrator.illumination(hit, rng));
+  };
+  const SpecularReflection specular(integrator, gloss, surfaces);
+  const IlluminationOptions settings = illumination_options(options);
+  return render_specular(gbuffer, camera, specular, settings.paths_per_pixel, settings.seed, progress);
+}
+
+void add_highlights(Image& relit, const std::vector<float>& coverage, const Image& highlights) {
+  for (size_t i = 0; i < highlights.size(); ++i) relit.pixels[i] += coverage[i] * highlights.pixels[i];
+}
+
 Image render_rig(const AnalysedScene& analysed, const Rig& rig, const RenderOptions& options, Progress& progress) {
   const NewIllumination renderer(analysed);
-  const IlluminationImages light = renderer.render(analysed.gbuffer(), analysed.scene().camera,
-                                                   renderer.rig_lighting(rig), options, progress, "new illumination");
-  return relit_image(photo_layers(analysed.scene(), analysed.analysis()), analysed.analysis().coverage, light, rig);
+  const Lighting lighting = renderer.rig_lighting(rig);
+  const GBuffer& gbuffer = analysed.gbuffer();
+  const IlluminationImages light =
+      renderer.render(gbuffer, analysed.scene().camera, lighting, options, progress, "new illumination");
+  Image relit =
+      relit_image(photo_layers(analysed.scene(), analysed.analysis()), analysed.analysis().coverage, light, rig);
+  add_highlights(relit, analysed.analysis().coverage,
+                 renderer.highlights(gbuffer, analysed.scene().camera, lighting, options, progress));
+  return relit;
 }
 
 Rig rig_from_scene(const Scene& scene) {

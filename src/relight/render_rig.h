@@ -82,14 +82,26 @@ class NewIllumination {
   KeptPaths keep_paths(const GBuffer& gbuffer, const RenderOptions& options, Progress& progress) const;
   // The illumination options render() uses with `options`.
   IlluminationOptions illumination_options(const RenderOptions& options) const;
+  // Its paths' settings: the bounces `options` allow, the scene's gloss.
+  IntegratorOptions integrator_options(const RenderOptions& options) const;
   // The radiance of `lighting`'s environment behind each pixel's background
   // samples (IlluminationImages::background) alone: no path is traced.
   Image render_background(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting) const;
+  // The highlights `lighting` makes on the glossy surfaces the pixels of
+  // `gbuffer` see (render/specular.h), a reflected ray meeting a surface
+  // taking the recovered albedo times its light; an empty image where no
+  // pixel sees a glossy surface.
+  Image highlights(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting, const RenderOptions& options,
+                   Progress& progress) const;
 
  private:
   const AnalysedScene& analysed_;
   PhotoAlbedo bounce_albedo_;
 };
+
+// Adds the highlights (NewIllumination::highlights; none where empty) to a
+// re-lit image, each pixel's times its coverage.
+void add_highlights(Image& relit, const std::vector<float>& coverage, const Image& highlights);
 
 // The re-lit photo. Pixels that see no geometry show the photo's background
 // times the rig's environment_scale, or the rig's new environment as the

@@ -480,10 +480,13 @@ void RelightSession::run_job(Job& job) {
         break;
       }
       case Kind::final: {
-        const IlluminationImages light =
-            illumination_.render(view.gbuffer(), view.camera(), illumination_.rig_lighting(job.rig),
-                                 options_.final_render, job.progress, "new illumination");
+        const Lighting lighting = illumination_.rig_lighting(job.rig);
+        const IlluminationImages light = illumination_.render(view.gbuffer(), view.camera(), lighting,
+                                                              options_.final_render, job.progress, "new illumination");
         job.result = relit_image(view.layers(), view.coverage(), light, job.rig);
+        add_highlights(
+            job.result, view.coverage(),
+            illumination_.highlights(view.gbuffer(), view.camera(), lighting, options_.final_render, job.progress));
         job.done = true;
         break;
       }

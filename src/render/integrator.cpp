@@ -94,49 +94,97 @@ Vec3 Integrator::from_environment(const SurfacePoint& p, const ProbeEnvironment*
   return sum;
 }
 
+Vec3 Integrator::specular_from_light(const SurfacePoint& p, const GgxLobe& lobe, const Vec3& v,
+                                     const LightSampler& light, Rng& rng) const {
+  const LightSample s = light.sample(p.position, p.normal, rng.uniform2());
+  const float f = s.irradiance.isZero() ? 0.0f : lobe.brdf(p.normal, s.direction, v);
+  return f > 0.0f ? Vec3(f * unoccluded(p, s)) : Vec3::Zero();
+}
+
+Vec3 Integrator::specular_from_lights(const SurfacePoint& p, const GgxLobe& lobe, const Vec3& v, Rng& rng) const {
+  Vec3 sum = Vec3::Zero();
+  for (const LightSampler& light : active_lights_) sum += specular_from_light(p, lobe, v, light, rng);
+  if (!pooled_lights_.empty()) {
+    float offset, density;
+    const int i = pooled_power_.sample(rng.uniform(), offset, density);
+    const float probability = density / float(pooled_power_.size());
+    if (probability > 0.0f) sum += specular_from_light(p, lobe, v, pooled_lights_[size_t(i)], rng) / probability;
+  }
+  return sum;
+}
+
 Vec3 Integrator::direct_light(const SurfacePoint& p, Rng& rng) const {
   return options_.first_surface_lights ? from_lights(p, rng) : Vec3::Zero();
 }
+
+// A path at a glossy surface goes on by its lobe this often, by the cosine
+// otherwise (unless the surface's diffuse light is known: then always by
+// the lobe).
+constexpr float kByLobe = 0.25f;
 
 template <class LightsAt>
 Vec3 Integrator::follow_path(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce,
                              const LightsAt& lights_at) const {
   const Environment& env = lighting_.environment;
   Vec3 result = Vec3::Zero();
-  Vec3 throughput = Vec3::Ones();
+  // What the light p sends back along the path counts with, and p's albedo
+  // (the start's white: its own highlights are rendered apart, render/specular.h).
+  Vec3 weight = Vec3::Ones(), albedo = Vec3::Ones();
+  const Gloss* gloss = nullptr;
+  bool known_diffuse = false;  // p's diffuse light is known: only its gloss's goes on
+  Vec3 outgoing = Vec3::Zero();
   SurfacePoint p = start;
   for (int bounce = 0;; ++bounce) {
     const ProbeEnvironment* probe = env.uses_probes() ? env.probe_for(p.position) : nullptr;
-    if (bounce > 0) result += lights_at(p, throughput);
-    result += throughput.cwiseProduct(from_environment(p, probe, rng));
+    const Vec3 diffuse = known_diffuse ? Vec3::Zero() : Vec3(weight.cwiseProduct(albedo));
+    if (bounce > 0) result += lights_at(p, diffuse, gloss ? weight : Vec3::Zero(), outgoing);
+    if (!known_diffuse) result += diffuse.cwiseProduct(from_environment(p, probe, rng));
 
     // The last bounce's ray can only bring the environment (its MIS half):
     // with none, it is not cast.
     if (bounce >= options_.max_bounces && env.is_black()) break;
-    // Continue the path by a cosine-weighted bounce; its estimator weight
-    // (albedo x cos/pi / pdf) is just the albedo.
-    const Vec2 u = bounce == 0 && first_bounce ? *first_bounce : rng.uniform2();
-    const Vec3 d = to_world(sample_cosine_hemisphere(u), p.normal);
+    // Continue the path by the gloss's lobe, or by a cosine-weighted bounce
+    // (its estimator weight, albedo x cos/pi / pdf, is just the albedo).
+    const float by_lobe_chance = !gloss ? 0.0f : known_diffuse ? 1.0f : kByLobe;
+    const bool by_lobe = by_lobe_chance >= 1.0f || (by_lobe_chance > 0.0f && rng.uniform() < by_lobe_chance);
+    Vec3 d, next_weight;
+    if (by_lobe) {
+      float lobe_weight;
+      if (!GgxLobe(*gloss).sample(p.normal, outgoing, rng.uniform2(), d, lobe_weight)) break;
+      next_weight = weight * (lobe_weight / by_lobe_chance);
+    } else {
+      const Vec2 u = bounce == 0 && first_bounce ? *first_bounce : rng.uniform2();
+      d = to_world(sample_cosine_hemisphere(u), p.normal);
+      next_weight = diffuse / (1.0f - by_lobe_chance);
+    }
     if (d.dot(p.geometric_normal) <= 0.0f) break;
     SurfacePoint next;
     if (!scene_.intersect(scene_.offset_origin(p, d), d, next)) {
       if (!env.is_black()) {
-        const float cos_pdf = p.normal.dot(d) * kInvPi;
-        result += throughput.cwiseProduct(env.radiance(probe, d)) * power_heuristic(cos_pdf, env.pdf(probe, d));
+        // The lobe's ray has no environment sample to share the direction with.
+        const float mis = by_lobe ? 1.0f : power_heuristic(p.normal.dot(d) * kInvPi, env.pdf(probe, d));
+        result += next_weight.cwiseProduct(env.radiance(probe, d)) * mis;
       }
       break;
     }
     if (bounce >= options_.max_bounces) break;
+    weight = next_weight;
+    outgoing = -d;
+    gloss = options_.gloss ? options_.gloss->at(next.prim) : nullptr;
+    known_diffuse = false;
     if (known_)
       if (const std::optional<Vec3> radiance = known_->at(next)) {
-        result += throughput.cwiseProduct(*radiance);
-        break;
+        result += weight.cwiseProduct(*radiance);
+        if (!gloss) break;
+        known_diffuse = true;  // what the photo shows of a glossy surface is its diffuse light: its gloss goes on
       }
-    throughput = throughput.cwiseProduct(albedo_ ? albedo_->at(next) : Vec3::Ones());
+    albedo = known_diffuse ? Vec3::Zero() : albedo_ ? albedo_->at(next) : Vec3::Ones();
     if (bounce + 1 >= options_.roulette_after) {
-      const float q = std::min(0.95f, throughput.maxCoeff());
+      // A gloss reflects a few percent (more at grazing angles).
+      const float reflects = weight.cwiseProduct(albedo).maxCoeff() + (gloss ? 0.1f * weight.maxCoeff() : 0.0f);
+      const float q = std::min(0.95f, reflects);
       if (q <= 0.0f || rng.uniform() >= q) break;
-      throughput /= q;
+      weight /= q;
     }
     p = next;
   }
@@ -144,15 +192,20 @@ Vec3 Integrator::follow_path(const SurfacePoint& start, Rng& rng, const Vec2* fi
 }
 
 Vec3 Integrator::indirect_light(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce) const {
-  return follow_path(start, rng, first_bounce, [&](const SurfacePoint& p, const Vec3& throughput) -> Vec3 {
-    return throughput.cwiseProduct(from_lights(p, rng));
-  });
+  return follow_path(
+      start, rng, first_bounce,
+      [&](const SurfacePoint& p, const Vec3& diffuse, const Vec3& specular, const Vec3& outgoing) {
+        Vec3 light = diffuse.isZero() ? Vec3::Zero() : Vec3(diffuse.cwiseProduct(from_lights(p, rng)));
+        if (!specular.isZero())
+          light += specular.cwiseProduct(specular_from_lights(p, GgxLobe(*options_.gloss->at(p.prim)), outgoing, rng));
+        return light;
+      });
 }
 
 void Integrator::bounce_vertices(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce,
                                  std::vector<PathVertex>& out) const {
-  follow_path(start, rng, first_bounce, [&](const SurfacePoint& p, const Vec3& throughput) -> Vec3 {
-    out.push_back({p.position, p.normal, p.geometric_normal, p.lift, throughput});
+  follow_path(start, rng, first_bounce, [&](const SurfacePoint& p, const Vec3& diffuse, const Vec3&, const Vec3&) {
+    out.push_back({p.position, p.normal, p.geometric_normal, p.lift, diffuse});
     return Vec3::Zero();
   });
 }

@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "core/sampling.h"
+#include "render/ggx.h"
 #include "render/ray_scene.h"
 #include "scene/environment.h"
+#include "scene/gloss.h"
 #include "scene/light.h"
 
 namespace relight {
@@ -72,6 +74,9 @@ struct IntegratorOptions {
   // Up to this many lights (suns aside) each get a shadow ray at every
   // point; more (a string of bulbs) share one, resampled (from_pooled_lights).
   int max_exhaustive_lights = 16;
+  // The glossy surfaces light bounces off, beside their albedo (a path
+  // goes on by their lobe or by the cosine); null: every surface matte.
+  const SurfaceGloss* gloss = nullptr;
 };
 
 class Integrator {
@@ -110,6 +115,8 @@ class Integrator {
   // does and keeps the vertices after its first surface, each with the
   // weight the light reaching it counts with (the environment and known
   // radiance the path meets are not kept: the paths serve lights alone).
+  // Of a scene whose surfaces are all matte: a glossy vertex's highlight of
+  // the lights is not kept.
   // light_at_vertex is then the lights' share at one such vertex, as
   // indirect_light adds it there. The vertices do not depend on the lights.
   struct PathVertex {
@@ -130,6 +137,12 @@ class Integrator {
   // Environment radiance seen along a camera ray from `origin`.
   Vec3 environment(const Vec3& origin, const Vec3& dir) const;
 
+  // The lights' light that a glossy surface at p reflects towards v (unit,
+  // away from the surface) by `lobe`: each light sampled once with a shadow
+  // ray (among many, one drawn by power). One estimate; average many.
+  Vec3 specular_from_lights(const SurfacePoint& p, const GgxLobe& lobe, const Vec3& v, Rng& rng) const;
+  const RayScene& rays() const { return scene_; }
+
  private:
   // Light from the lights, and one environment sample, reflected by a white surface at p.
   Vec3 from_lights(const SurfacePoint& p, Rng& rng) const;
@@ -143,8 +156,13 @@ class Integrator {
   // their number.
   Vec3 from_pooled_lights(const SurfacePoint& p, Rng& rng) const;
   Vec3 from_environment(const SurfacePoint& p, const ProbeEnvironment* probe, Rng& rng) const;
+  Vec3 specular_from_light(const SurfacePoint& p, const GgxLobe& lobe, const Vec3& v, const LightSampler& light,
+                           Rng& rng) const;
   // One path from `start`: the environment and known radiance it meets,
-  // plus lights_at(vertex, throughput) at each vertex after the first.
+  // plus lights_at(vertex, diffuse, specular, outgoing) at each vertex after
+  // the first: the weights its diffuse light (albedo included; 0 where the
+  // vertex's diffuse light is known) and its gloss's highlight (0 where
+  // matte) count with, and the unit direction back along the path.
   template <class LightsAt>
   Vec3 follow_path(const SurfacePoint& start, Rng& rng, const Vec2* first_bounce, const LightsAt& lights_at) const;
 

@@ -11,6 +11,7 @@
 
 #include "core/image.h"
 #include "scene/camera.h"
+#include "scene/gloss.h"
 #include "scene/light.h"
 #include "scene/probe.h"
 #include "scene/triangle_mesh.h"
@@ -56,6 +57,10 @@ struct Scene {
   Vec3 background = Vec3::Zero();
   std::vector<Probe> probes;
   std::optional<AlbedoReference> reference;  // scene.json's optional `reference`
+  // scene.json's optional `materials`: the surfaces that shine, by object or
+  // material name, and put on the mesh's triangles.
+  std::map<std::string, Gloss> materials;
+  SurfaceGloss gloss;
   // A tracked shot's frames (none: a still). Their photos are read one at a
   // time (load_shot_frame), not with the scene.
   Shot shot;

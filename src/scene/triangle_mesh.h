@@ -20,9 +20,15 @@ struct TriangleMesh {
   // is false where a mesh was made rather than read (refined, subdivided).
   std::vector<std::string> objects;
   std::vector<uint32_t> triangle_objects;
+  // Likewise the materials the file names (Blender's material names) and
+  // each triangle's; kNoMaterial where the file gives a triangle none.
+  std::vector<std::string> materials;
+  std::vector<uint32_t> triangle_materials;
+  static constexpr uint32_t kNoMaterial = 0xffffffffu;
 
   bool has_normals() const { return !normals.empty(); }
   bool has_objects() const { return !triangles.empty() && triangle_objects.size() == triangles.size(); }
+  bool has_materials() const { return !triangles.empty() && triangle_materials.size() == triangles.size(); }
   Eigen::AlignedBox3f bounds() const {
     Eigen::AlignedBox3f box;
     for (const auto& p : positions) box.extend(p);

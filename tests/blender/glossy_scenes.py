@@ -1,0 +1,112 @@
+# Glossy test scenes and their matte twins, made by the reference scenes'
+# generator with its functions as they are (its main() is run, as in
+# bench/own_scenes.py): the public studio and bookcase with a few surfaces
+# turned glossy by the generator's make_glossy (a Principled BSDF with the same
+# base colour, so albedo_gt.exr is unchanged), and the unchanged public scenes
+# under other names, rendered at the same resolution and samples as the twins.
+#
+#   blender -b --factory-startup --python tests/blender/glossy_scenes.py -- \
+#       ../shared/scenegen/make_scenes.py --scene glossy_studio --out tests/data/glossy/glossy_studio \
+#       --res 320 240 --spp 256 --probe-res 256 128
+#
+# After the generator's path, the generator's own arguments; the scenes below
+# are added to the ones it knows (tests/data/glossy/README.md has the four runs).
+#   glossy_studio    studio; floor (concrete) roughness 0.3, ball (ball_paint) 0.2
+#   glossy_bookcase  bookcase; floor (floor_tiles) roughness 0.3, ball_blue (rubber_blue) 0.2
+#   matte_studio     the public studio, unchanged
+#   matte_bookcase   the public bookcase, unchanged
+# Glossy surfaces: specular 0.5, distribution GGX (single scattering; Blender
+# 3.4's default, set explicitly). For the glossy scenes the script then adds
+# "materials" {OBJECT: {roughness, specular}} to OUT/scene.json (keys: the
+# `o NAME` objects of geometry.obj) and a paragraph to OUT/README.md.
+#
+# One change to the generator's lights in the glossy scenes: it makes every
+# light invisible to glossy rays (right for its all-diffuse scenes and the
+# mirror ball), which in Cycles also drops the light's glossy (specular)
+# contribution, so a glossy floor would show no highlight of any lamp. Here
+# the lights of the glossy scenes stay invisible to the camera but are seen by
+# glossy rays, in the photo, the probes and every rig. (For all-diffuse
+# materials that setting changes nothing, so the matte twins are the public
+# scenes exactly.)
+import json, os, sys
+
+argv = sys.argv[sys.argv.index('--') + 1:]
+generator = argv[0]
+sys.argv = [sys.argv[0], '--'] + argv[1:]  # the generator reads its own arguments after '--'
+gen = {'__file__': os.path.abspath(generator), '__name__': 'make_scenes'}
+source = open(generator).read()
+exec(compile(source[:source.rindex('\nmain()')], generator, 'exec'), gen)
+
+import bpy
+
+# scene -> (public scene, {object: (material, roughness, specular)})
+GLOSSY = {
+    'glossy_studio': ('studio', {'floor': ('concrete', 0.3, 0.5), 'ball': ('ball_paint', 0.2, 0.5)}),
+    'glossy_bookcase': ('bookcase', {'floor': ('floor_tiles', 0.3, 0.5), 'ball_blue': ('rubber_blue', 0.2, 0.5)}),
+}
+MATTE = {'matte_studio': 'studio', 'matte_bookcase': 'bookcase'}
+
+_add_light = gen['add_light']
+
+
+def add_light_glossy_visible(spec):
+    o = _add_light(spec)
+    o.visible_glossy = True
+    return o
+
+
+def glossy_scene(name):
+    public, surfaces = GLOSSY[name]
+
+    def build():
+        gen['add_light'] = add_light_glossy_visible   # main() looks add_light up at call time
+        S = gen['SCENES'][public]()
+        for obj, (mat, rough, spec) in surfaces.items():
+            m = bpy.data.materials[mat]
+            users = [o.name for o in gen['GEOM'] if m.name in [s.material.name for s in o.material_slots if s.material]]
+            assert users == [obj], 'material %s is on %s, expected only %s' % (mat, users, obj)
+            gen['make_glossy'](m, rough, spec)
+            p = [n for n in m.node_tree.nodes if n.type == 'BSDF_PRINCIPLED'][0]
+            p.distribution = 'GGX'   # single-scattering GGX (already Blender 3.4's default)
+        return S
+    return build
+
+
+for _n in GLOSSY:
+    gen['SCENES'][_n] = glossy_scene(_n)
+for _n, _p in MATTE.items():
+    gen['SCENES'][_n] = gen['SCENES'][_p]
+
+gen['main']()
+
+# ---- glossy scenes: say which surfaces are glossy in scene.json and README.md
+args = gen['parse_args']()
+if args.scene in GLOSSY:
+    out = os.path.abspath(args.out)
+    surfaces = GLOSSY[args.scene][1]
+    objs = [l.split()[1] for l in open(os.path.join(out, 'geometry.obj')) if l.startswith('o ')]
+    missing = [o for o in surfaces if o not in objs]
+    if missing:
+        raise SystemExit('glossy_scenes.py: %s not among the objects of geometry.obj (%s)' % (missing, objs))
+    sp = os.path.join(out, 'scene.json')
+    scene = json.load(open(sp))
+    scene['materials'] = {o: {'roughness': r, 'specular': s} for o, (_, r, s) in surfaces.items()}
+    with open(sp, 'w') as fh:
+        json.dump(scene, fh, indent=2)
+    line = ('**Glossy surfaces** (unlike the sentence above, not every material is a Diffuse BSDF): %s are a '
+            'Principled BSDF (Blender %s, Cycles; distribution GGX, single scattering; metallic 0, every other '
+            'input at its default; specular 0.5 is a normal-incidence reflectance of 0.08 x 0.5 = 0.04) made by the generator\'s `make_glossy` from the diffuse material, '
+            'with the same base colour (so `albedo_gt.exr`, the Diffuse Color pass, is still the base colour). '
+            'Its diffuse part is Cycles 3.x\'s Principled diffuse (Disney/Burley, with a roughness-dependent '
+            'retro-reflection term), not Lambertian. `scene.json` lists them under `materials`. The lights are '
+            'invisible to the camera but seen by glossy rays (the generator hides them from glossy rays, which '
+            'would drop their highlights), in the photo, the probes and every rig.' %
+            (', '.join('`%s` (material `%s`) roughness %g, specular %g' % (o, m, r, s)
+                       for o, (m, r, s) in surfaces.items()), bpy.app.version_string))
+    rp = os.path.join(out, 'README.md')
+    text = open(rp).read().split('\n')
+    at = next(i for i, l in enumerate(text) if l.startswith('Scene `%s`, rendered with Blender' % args.scene))
+    text[at + 1:at + 1] = ['', line]
+    with open(rp, 'w') as fh:
+        fh.write('\n'.join(text))
+    print('GLOSSY NOTED', args.scene, json.dumps(scene['materials']), flush=True)
