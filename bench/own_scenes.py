@@ -14,12 +14,10 @@
 #              equirect probe. Rig `moved`: the panel 0.64 m across the room.
 import os, sys
 
-argv = sys.argv[sys.argv.index('--') + 1:]
-generator = argv[0]
-sys.argv = [sys.argv[0], '--'] + argv[1:]  # the generator reads its own arguments after '--'
-gen = {'__file__': os.path.abspath(generator), '__name__': 'make_scenes'}
-source = open(generator).read()
-exec(compile(source[:source.rindex('\nmain()')], generator, 'exec'), gen)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import scene_generator
+
+gen = scene_generator.load()
 
 
 def scene_panelroom():

@@ -52,13 +52,7 @@ int main(int argc, char** argv) {
   write_exr(fs::path(out) / "relit" / "evening.exr", photo_under(evening.lights, evening.environment_scale),
             ExrPrecision::half);
 
-  Image albedo_gt(width, height);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int k = 0; k < gbuffer.samples_per_pixel(); ++k)
-        if (const GBufferSample& s = gbuffer.sample(x, y, k); s.hit)
-          albedo_gt.at(x, y) += albedo.at(s.surface) / float(gbuffer.samples_per_pixel());
-  write_exr(fs::path(out) / "albedo_gt.exr", albedo_gt, ExrPrecision::half);
+  write_exr(fs::path(out) / "albedo_gt.exr", example::room_albedo_image(gbuffer), ExrPrecision::half);
   write_exr_scalar(fs::path(out) / "mask.exr", gbuffer.coverage(), width, height);
   save_obj(scene.geometry_path, scene.mesh);
   save_rig(fs::path(out) / "rigs" / "evening.json", evening);

@@ -103,6 +103,17 @@ Image room_photo(const Scene& room, const Camera& camera, const RayScene& rays, 
   return synthesize_photo(samples, camera, integrator, albedo, paths, seed, Progress::silent());
 }
 
+Image room_albedo_image(const GBuffer& gbuffer) {
+  const RoomAlbedo albedo = room_albedo();
+  Image image(gbuffer.width(), gbuffer.height());
+  for (int y = 0; y < gbuffer.height(); ++y)
+    for (int x = 0; x < gbuffer.width(); ++x)
+      for (int k = 0; k < gbuffer.samples_per_pixel(); ++k)
+        if (const GBufferSample& s = gbuffer.sample(x, y, k); s.hit)
+          image.at(x, y) += albedo.at(s.surface) / float(gbuffer.samples_per_pixel());
+  return image;
+}
+
 Vec3 RoomAlbedo::at(const SurfacePoint& p) const {
   const Vec3& x = p.position;
   switch (object_[p.prim]) {

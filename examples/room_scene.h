@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "render/gbuffer.h"
 #include "render/integrator.h"
 #include "scene/scene.h"
 
@@ -28,6 +29,9 @@ class RoomAlbedo final : public SurfaceAlbedo {
   std::vector<int> object_;
 };
 RoomAlbedo room_albedo();
+// The true albedo each pixel of `gbuffer` shows, weighted by its coverage
+// (0 on the background), as a renderer's diffuse-colour pass: albedo_gt.exr.
+Image room_albedo_image(const GBuffer& gbuffer);
 
 // The room's photo through `camera` (the room's own, or another): path
 // traced with its lamp, its background and its true albedo, `paths` a

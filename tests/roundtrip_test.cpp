@@ -43,12 +43,7 @@ const RoomTruth& room_truth() {
     t.scene.photo = photo_of(t.scene, rays, gbuffer, albedo, t.scene.lights, 1.0f);
     const Rig evening = example::evening_rig();
     t.evening = photo_of(t.scene, rays, gbuffer, albedo, evening.lights, evening.environment_scale);
-    t.albedo_gt = Image(160, 120);
-    for (int y = 0; y < 120; ++y)
-      for (int x = 0; x < 160; ++x)
-        for (int k = 0; k < gbuffer.samples_per_pixel(); ++k)
-          if (const auto& s = gbuffer.sample(x, y, k); s.hit)
-            t.albedo_gt.at(x, y) += albedo.at(s.surface) / float(gbuffer.samples_per_pixel());
+    t.albedo_gt = example::room_albedo_image(gbuffer);
     return t;
   }();
   return truth;

@@ -127,13 +127,7 @@ const GlossyRoom& glossy_room() {
     r.scene.photo = glossy_photo(r.scene, rays, gbuffer, r.scene.lights, 1.0f, &r.highlights);
     const Rig evening = example::evening_rig();
     r.evening = glossy_photo(r.scene, rays, gbuffer, evening.lights, evening.environment_scale);
-    const example::RoomAlbedo albedo = example::room_albedo();
-    r.albedo_gt = Image(160, 120);
-    for (int y = 0; y < 120; ++y)
-      for (int x = 0; x < 160; ++x)
-        for (int k = 0; k < gbuffer.samples_per_pixel(); ++k)
-          if (const auto& s = gbuffer.sample(x, y, k); s.hit)
-            r.albedo_gt.at(x, y) += albedo.at(s.surface) / float(gbuffer.samples_per_pixel());
+    r.albedo_gt = example::room_albedo_image(gbuffer);
     return r;
   }();
   return room;

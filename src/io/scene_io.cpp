@@ -423,11 +423,11 @@ std::string some_names(const std::vector<std::string>& names) {
 // Every name in `materials` must be an object or a material of the geometry.
 void check_material_names(const JsonReader& r, const std::map<std::string, Gloss>& materials, const fs::path& geometry,
                           const TriangleMesh& mesh) {
+  const auto among = [](const std::vector<std::string>& names, const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
   for (const auto& [name, gloss] : materials) {
-    const auto named = [&](const std::vector<std::string>& names) {
-      return std::find(names.begin(), names.end(), name) != names.end();
-    };
-    if (named(mesh.objects) || named(mesh.materials)) continue;
+    if (among(mesh.objects, name) || among(mesh.materials, name)) continue;
     r.fail(json_child("/materials", name),
            fmt::format("{} has no object or material named \"{}\" (its objects: {}; its materials: {})",
                        geometry.string(), name, some_names(mesh.objects), some_names(mesh.materials)));

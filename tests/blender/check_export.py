@@ -198,3 +198,23 @@ near(probes[0]["position"], camera["position"])
 loaded = subprocess.run([relight, "rig", scene_path, "-o", outdir + "/hdri/rig.json"], capture_output=True, text=True)
 assert loaded.returncode == 0, loaded.stderr
 print("check_export: HDRI world exported as an equirect probe relight loads")
+
+# Materials: the example's Diffuse BSDFs export none; a Principled BSDF on the ball exports the ball
+# as glossy by its object name (the OBJ's), with its roughness and specular, and relight loads it.
+assert "materials" not in scene, scene.get("materials")
+ball = bpy.data.objects["Ball"]
+shiny = bpy.data.materials.new("Varnish")
+shiny.use_nodes = True  # a new material's surface is a Principled BSDF
+principled = shiny.node_tree.nodes["Principled BSDF"]
+principled.inputs["Roughness"].default_value = 0.25
+principled.inputs["Specular"].default_value = 0.6
+ball.data.materials[0] = shiny
+scene_path = relight_export.export_scene(bpy.context.scene, outdir + "/glossy", outdir + "/" + scene["photo"])
+with open(scene_path) as f:
+    materials = json.load(f)["materials"]
+assert list(materials) == ["Ball"], materials
+near(materials["Ball"]["roughness"], 0.25)
+near(materials["Ball"]["specular"], 0.6)
+loaded = subprocess.run([relight, "rig", scene_path, "-o", outdir + "/glossy/rig.json"], capture_output=True, text=True)
+assert loaded.returncode == 0, loaded.stderr
+print("check_export: a Principled BSDF exported as the object's gloss, which relight loads")

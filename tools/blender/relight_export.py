@@ -269,6 +269,51 @@ def rendered_objects(scene):
     return found
 
 
+def _principled(material):
+    """The Principled BSDF that is a material's surface, or None (any other shader: matte to relight)."""
+    if not material or not material.use_nodes:
+        return None
+    for node in material.node_tree.nodes:
+        if node.type == 'OUTPUT_MATERIAL' and node.is_active_output and node.inputs['Surface'].links:
+            source = node.inputs['Surface'].links[0].from_node
+            return source if source.type == 'BSDF_PRINCIPLED' else None
+    return None
+
+
+def materials_block(objects):
+    """scene.json's "materials": each rendered mesh whose surface is a Principled BSDF that shines
+    (specular above 0), by object name (the OBJ's `o` lines), with its roughness and specular. A
+    texture driving either is taken at the input's own value, metallic as 0 (relight models dielectrics);
+    both said. An object of several glossy materials takes the sharpest's, with a warning."""
+    block = {}
+    for obj in sorted(objects, key=lambda o: o.name):
+        if obj.type != 'MESH':
+            continue
+        glosses = set()
+        for slot in obj.material_slots:
+            node = _principled(slot.material)
+            if node is None:
+                continue
+            for name in ('Roughness', 'Specular', 'Metallic'):
+                if node.inputs[name].is_linked:
+                    print("relight_export: warning: '%s' (object '%s'): its %s is a texture; exported as %.3g"
+                          % (slot.material.name, obj.name, name.lower(), node.inputs[name].default_value))
+            if node.inputs['Metallic'].default_value > 0:
+                print("relight_export: warning: '%s' (object '%s') is metallic, which relight does not model: "
+                      "exported as a dielectric" % (slot.material.name, obj.name))
+            roughness = round(min(max(node.inputs['Roughness'].default_value, 0.0), 1.0), 4)
+            specular = round(min(max(node.inputs['Specular'].default_value, 0.0), 1.0), 4)
+            if specular > 0:
+                glosses.add((roughness, specular))
+        if len(glosses) > 1:
+            print("relight_export: warning: object '%s' has materials of %d glosses; exported with the "
+                  "sharpest's" % (obj.name, len(glosses)))
+        if glosses:
+            roughness, specular = min(glosses)
+            block[obj.name] = {"roughness": roughness, "specular": specular}
+    return block
+
+
 def write_geometry(path, metres):
     """Every mesh Cycles renders (hide_render objects and disabled collections left out) as one OBJ
     in world coordinates, metres, no axis change, triangulated. Refuses a scene without faces."""
@@ -367,6 +412,9 @@ def export_scene(scene, outdir, photo=None, shot=None, frames=None):
            "lights": lights}
     if shot:
         doc["shot"] = shot_doc
+    materials = materials_block(rendered)
+    if materials:
+        doc["materials"] = materials
     target = os.path.join(outdir, "scene.json")
     # Everything is made in a scratch folder first: a scene refused on the way writes nothing.
     with tempfile.TemporaryDirectory() as scratch:
