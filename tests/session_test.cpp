@@ -8,11 +8,15 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <thread>
 
 #include "analysed_room.h"
 #include "io/image_io.h"
+#include "relight/render_rig.h"
 #include "render/render_illumination.h"
 
 using namespace relight;
@@ -424,6 +428,69 @@ TEST(Session, OpenGLBackendShowsTheSameAndConvergesTheSame) {
   options.settle = std::chrono::milliseconds(20);
   RelightSession converging(r, rig, options);
   EXPECT_EQ(max_difference(*converging.wait_until_converged().image, offline_render(rig, options)), 0.0f);
+}
+
+}  // namespace
+
+namespace {
+
+// The room with a glossy floor and ball, analysed.
+const AnalysedScene& glossy_room() {
+  static const std::unique_ptr<AnalysedScene> r = [] {
+    Scene scene = example::room_scene(120, 90);
+    scene.path = "glossy room";
+    scene.materials = {{"floor", Gloss{0.3f, 0.5f}}, {"ball", Gloss{0.2f, 0.5f}}};
+    scene.gloss = SurfaceGloss(scene.materials, scene.mesh);
+    scene.photo = example::room_photo(scene, scene.camera, RayScene(scene.mesh), 4, 3);
+    AnalysisOptions options;
+    options.strategy = Strategy::lights;
+    options.paths_per_pixel = 4;
+    options.interreflection = false;
+    return AnalysedScene::analyse(std::move(scene), options, Progress::silent());
+  }();
+  return *r;
+}
+
+TEST(Session, GlossySurfacesShowTheHighlightsAndConvergeToTheOfflineRender) {
+  const AnalysedScene& r = glossy_room();
+  SessionOptions options = quick_options();
+  // The highlights' and the bounce light's refinements slow enough (many
+  // paths) that the frames before and after the highlights' are caught.
+  options.bounce_paths = 64;
+  options.final_render.paths_per_pixel = 64;
+  Rig rig = example::evening_rig();
+  rig.lights.resize(1);  // the lamp
+  RelightSession session(r, rig, options);
+  // The frame just before the highlights' refinement (the fourth: after the
+  // lamp's antialiased and soft light and the environment) and just after it.
+  const auto frame_after = [&](uint64_t refinements) {
+    while (session.stats().refinements < refinements) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));  // composed and published
+    return session.frame();
+  };
+  const Frame before = frame_after(3), after = frame_after(4);
+  ASSERT_NE(after.quality, FrameQuality::converged);
+  const NewIllumination renderer(r);
+  Lighting lamp;
+  lamp.lights = rig.lights;
+  const Image highlights =
+      renderer.highlights(r.gbuffer(), r.scene().camera, lamp, {options.bounce_paths, options.final_render.max_bounces},
+                          Progress::silent());
+  ASSERT_FALSE(highlights.empty());
+  // What the refinement added, projected on the lamp's highlights (1: they
+  // are what it added).
+  double along = 0.0, norm = 0.0;
+  for (size_t i = 0; i < highlights.size(); ++i) {
+    const Vec3 h = r.analysis().coverage[i] * highlights.pixels[i];
+    along += (after.image->pixels[i] - before.image->pixels[i]).dot(h);
+    norm += h.dot(h);
+  }
+  std::printf("[ figures  ] the highlights' refinement added %.3f of the lamp's highlights\n", along / norm);
+  EXPECT_NEAR(along / norm, 1.0, 0.05);
+  keep_image("glossy_refined", *after.image);
+
+  const Frame converged = session.wait_until_converged();
+  EXPECT_EQ(max_difference(*converged.image, render_rig(r, rig, options.final_render, Progress::silent())), 0.0f);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "render/specular.h"
 
 namespace relight {
 
@@ -82,6 +83,10 @@ struct RelightSession::LightCache {
   Stage stage = Stage::none;
   Image bounce;  // its interreflection, unit emission; empty: none yet
   uint64_t bounce_geometry = 0;
+  // Its highlights on glossy surfaces, unit emission (render/specular.h);
+  // empty: none yet, or none seen.
+  Image highlight;
+  uint64_t highlight_geometry = 0;
 
   bool pending() const { return light.enabled && direct_geometry != geometry; }
 };
@@ -91,12 +96,13 @@ struct RelightSession::LightCache {
 struct RelightSession::EnvironmentLayer {
   Image surface;             // on the surfaces, interreflection included; empty: none yet
   Image background;          // (1 - c) x the new environment; empty: the view's own background
+  Image highlight;           // its highlights on glossy surfaces (refined only); empty: none
   uint64_t edit = kNothing;  // the environment edit it was rendered for
   bool refined = false;      // at the view's size (else the coarse preview)
 };
 
 struct RelightSession::Job {
-  enum class Kind { interactive, environment_preview, antialiased, soft, environment, bounce, final } kind;
+  enum class Kind { interactive, environment_preview, antialiased, soft, environment, highlight, bounce, final } kind;
   uint64_t light_id = 0;
   uint64_t geometry = 0;  // of the light (of the environment), when the job was made
   uint64_t edit = 0;      // the session's, when the job was made
@@ -105,6 +111,7 @@ struct RelightSession::Job {
   Rig rig;                                    // final
   Image result;
   Image background;  // environment_preview, environment: of a new environment
+  Image highlight;   // environment: its highlights
   std::atomic<bool> cancel{false};
   Progress progress{false};  // render_illumination's cancel flag
   bool done = false;
@@ -149,6 +156,7 @@ RelightSession::RelightSession(const AnalysedScene& analysed, const Rig& rig, co
     }
   }
   if (!fast_) fast_ = std::make_unique<CpuDirectLight>(view_->surfaces(), analysed_.rays());
+  sees_gloss_ = sees_gloss(view_->gbuffer(), analysed_.scene().gloss);
 
   environment_scale_ = rig.environment_scale;
   for (const Light& light : rig.lights) {
@@ -379,6 +387,10 @@ std::unique_ptr<RelightSession::Job> RelightSession::next_job_locked(std::chrono
     if (cache->light.enabled && cache->stage < Stage::soft && has_extent(cache->light))
       return for_light(Kind::soft, *cache);
   if (!environment_->refined) return for_environment(Kind::environment);
+  if (sees_gloss_)
+    for (const auto& cache : lights_)
+      if (cache->light.enabled && cache->highlight_geometry != cache->geometry)
+        return for_light(Kind::highlight, *cache);
   for (const auto& cache : lights_)
     if (cache->light.enabled && cache->bounce_geometry != cache->geometry) return for_light(Kind::bounce, *cache);
   if (!final_) {
@@ -416,6 +428,9 @@ void RelightSession::render_environment(Job& job, bool preview) {
         illumination_.render(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress, "environment")
             .surface;
   }
+  if (!preview && sees_gloss_)
+    job.highlight = illumination_.highlights(view.gbuffer(), view.camera(), lighting,
+                                             {options_.bounce_paths, options_.final_render.max_bounces}, job.progress);
   if (job.environment)
     job.background = preview ? seen_through_pixel_centres(view, lighting.environment)
                              : seen_environment(view.coverage(), illumination_.render_background(
@@ -465,6 +480,13 @@ void RelightSession::run_job(Job& job) {
       case Kind::environment:
         render_environment(job, job.kind == Kind::environment_preview);
         break;
+      case Kind::highlight: {
+        Lighting lighting;
+        lighting.lights = {job.light};
+        job.result = illumination_.highlights(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress);
+        job.done = true;
+        break;
+      }
       case Kind::bounce: {
         if (bounce_options.max_bounces == 0) {
           job.result = Image(view.width(), view.height());
@@ -511,6 +533,7 @@ void RelightSession::install_locked(Job& job) {
     if (job.kind == Kind::environment && job.geometry != environment_edit_) return;
     environment_->surface = std::move(job.result);
     environment_->background = std::move(job.background);
+    environment_->highlight = std::move(job.highlight);
     environment_->edit = job.geometry;
     environment_->refined = job.kind == Kind::environment;
     base_valid_ = false;
@@ -532,6 +555,11 @@ void RelightSession::install_locked(Job& job) {
   if (job.kind != Kind::interactive && job.geometry != cache->geometry) return;
   switch (job.kind) {
     case Kind::interactive:
+      // Its highlights were of where it was: the frame goes on without them.
+      if (!cache->highlight.empty()) {
+        cache->highlight = Image();
+        base_valid_ = false;
+      }
       std::swap(cache->direct, job.result);
       if (job.result.width == view_->width() && job.result.height == view_->height()) spare_ = std::move(job.result);
       cache->direct_geometry = job.geometry;
@@ -547,6 +575,11 @@ void RelightSession::install_locked(Job& job) {
       cache->bounce = std::move(job.result);
       cache->bounce_geometry = job.geometry;
       base_valid_ = false;  // the base holds every light's interreflection
+      break;
+    case Kind::highlight:
+      cache->highlight = std::move(job.result);
+      cache->highlight_geometry = job.geometry;
+      base_valid_ = false;  // and every light's highlights
       break;
     default:
       break;
@@ -602,15 +635,24 @@ void RelightSession::compose_and_publish(std::unique_lock<std::mutex>& lock) {
     const int w = view_->width(), h = view_->height();
     const auto term = [](const Image& image, size_t i) { return image.empty() ? Vec3::Zero() : image.pixels[i]; };
     if (c.rebuild_base) {
-      // Everything but the focus light's direct light.
+      // Everything but the focus light's direct light: the diffuse light
+      // times the albedo, the highlights times the coverage.
       if (base_.width != w || base_.height != h) base_ = Image(w, h);
+      const std::vector<float>& coverage = view_->coverage();
       tbb::parallel_for(tbb::blocked_range<size_t>(0, base_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
           Vec3 light = c.scale * term(environment_->surface, i);
-          for (const auto& t : c.others)
+          Vec3 highlight = c.scale * term(environment_->highlight, i);
+          for (const auto& t : c.others) {
             light += t.emission.cwiseProduct(term(t.light->direct, i) + term(t.light->bounce, i));
-          if (c.focus) light += c.focus->emission.cwiseProduct(term(c.focus->light->bounce, i));
-          base_.pixels[i] = layers.albedo_coverage.pixels[i].cwiseProduct(light) + c.scale * background.pixels[i];
+            highlight += t.emission.cwiseProduct(term(t.light->highlight, i));
+          }
+          if (c.focus) {
+            light += c.focus->emission.cwiseProduct(term(c.focus->light->bounce, i));
+            highlight += c.focus->emission.cwiseProduct(term(c.focus->light->highlight, i));
+          }
+          base_.pixels[i] = layers.albedo_coverage.pixels[i].cwiseProduct(light) + coverage[i] * highlight +
+                            c.scale * background.pixels[i];
         }
       });
     }

@@ -15,7 +15,9 @@
 // costs a preview of its light on a view a few times smaller (the lights
 // stay cached). Once no edit has come for a moment the view refines on a
 // worker thread — all sub-pixel samples, more light samples for soft
-// lights, the environment at full size, each light's interreflection — and
+// lights, the environment at full size, each light's highlights on glossy
+// surfaces (render/specular.h; a layer of their own, times the coverage),
+// each light's interreflection — and
 // last runs the render of `relight render` (render_rig), so it converges to
 // exactly that image.
 #pragma once
@@ -54,7 +56,7 @@ struct SessionOptions {
 // How far a frame has got.
 enum class FrameQuality {
   interactive,  // some light shown at one sample per pixel, or the environment as its preview
-  refining,     // every light and the environment refined; interreflection or the final render still to come
+  refining,     // every light and the environment refined; highlights, interreflection or the final render to come
   converged,    // the final render: exactly render_rig's image (at the photo's size)
 };
 const char* to_string(FrameQuality quality);
@@ -138,6 +140,7 @@ class RelightSession {
   NewIllumination illumination_;
   std::unique_ptr<RelightView> view_;
   std::unique_ptr<DirectLightBackend> fast_;
+  bool sees_gloss_ = false;  // the view sees a glossy surface: lights and environment get highlight layers
   Backend backend_ = Backend::cpu;
   std::string backend_note_;
 
