@@ -38,10 +38,7 @@ int main(int argc, char** argv) {
   Progress progress;
 
   const auto photo_under = [&](const std::vector<Light>& lights, float environment_scale) {
-    Lighting lighting;
-    lighting.lights = lights;
-    lighting.environment = Environment::constant(scene.background);
-    lighting.environment.set_scale(environment_scale);
+    const Lighting lighting = example::room_lighting(scene, lights, environment_scale);
     IntegratorOptions options;
     options.max_bounces = 8;
     const Integrator integrator(rays, lighting, &albedo, options);

@@ -93,10 +93,16 @@ RoomAlbedo room_albedo() {
   return RoomAlbedo(build_room(m));
 }
 
-Image room_photo(const Scene& room, const Camera& camera, const RayScene& rays, int paths, uint64_t seed) {
+Lighting room_lighting(const Scene& room, const std::vector<Light>& lights, float environment_scale) {
   Lighting lighting;
-  lighting.lights = room.lights;
+  lighting.lights = lights;
   lighting.environment = Environment::constant(room.background);
+  lighting.environment.set_scale(environment_scale);
+  return lighting;
+}
+
+Image room_photo(const Scene& room, const Camera& camera, const RayScene& rays, int paths, uint64_t seed) {
+  const Lighting lighting = room_lighting(room, room.lights);
   const RoomAlbedo albedo = room_albedo();
   const Integrator integrator(rays, lighting, &albedo);
   const GBuffer samples(camera, rays, 4, 5, "room");

@@ -33,6 +33,9 @@ RoomAlbedo room_albedo();
 // (0 on the background), as a renderer's diffuse-colour pass: albedo_gt.exr.
 Image room_albedo_image(const GBuffer& gbuffer);
 
+// The room lit by `lights` and its background times environment_scale.
+Lighting room_lighting(const Scene& room, const std::vector<Light>& lights, float environment_scale = 1.0f);
+
 // The room's photo through `camera` (the room's own, or another): path
 // traced with its lamp, its background and its true albedo, `paths` a
 // pixel over 4 sub-pixel samples.

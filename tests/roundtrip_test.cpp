@@ -22,10 +22,7 @@ struct RoomTruth {
 
 Image photo_of(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const SurfaceAlbedo& albedo,
                const std::vector<Light>& lights, float environment_scale) {
-  Lighting lighting;
-  lighting.lights = lights;
-  lighting.environment = Environment::constant(scene.background);
-  lighting.environment.set_scale(environment_scale);
+  const Lighting lighting = example::room_lighting(scene, lights, environment_scale);
   IntegratorOptions options;
   options.max_bounces = 6;
   const Integrator integrator(rays, lighting, &albedo, options);

@@ -436,18 +436,8 @@ namespace {
 
 // The room with a glossy floor and ball, analysed.
 const AnalysedScene& glossy_room() {
-  static const std::unique_ptr<AnalysedScene> r = [] {
-    Scene scene = example::room_scene(120, 90);
-    scene.path = "glossy room";
-    scene.materials = {{"floor", Gloss{0.3f, 0.5f}}, {"ball", Gloss{0.2f, 0.5f}}};
-    scene.gloss = SurfaceGloss(scene.materials, scene.mesh);
-    scene.photo = example::room_photo(scene, scene.camera, RayScene(scene.mesh), 4, 3);
-    AnalysisOptions options;
-    options.strategy = Strategy::lights;
-    options.paths_per_pixel = 4;
-    options.interreflection = false;
-    return AnalysedScene::analyse(std::move(scene), options, Progress::silent());
-  }();
+  static const std::unique_ptr<AnalysedScene> r =
+      test::analyse_room({{"floor", Gloss{0.3f, 0.5f}}, {"ball", Gloss{0.2f, 0.5f}}});
   return *r;
 }
 

@@ -95,10 +95,7 @@ const std::map<std::string, Gloss> kRoomMaterials = {{"floor", {0.3f, 0.5f}}, {"
 Image glossy_photo(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const std::vector<Light>& lights,
                    float environment_scale, Image* highlights_out = nullptr) {
   const example::RoomAlbedo albedo = example::room_albedo();
-  Lighting lighting;
-  lighting.lights = lights;
-  lighting.environment = Environment::constant(scene.background);
-  lighting.environment.set_scale(environment_scale);
+  const Lighting lighting = example::room_lighting(scene, lights, environment_scale);
   IntegratorOptions options;
   options.max_bounces = 6;
   options.gloss = &scene.gloss;
@@ -120,8 +117,7 @@ const GlossyRoom& glossy_room() {
     GlossyRoom r;
     r.scene = example::room_scene(160, 120);
     r.scene.path = "glossy room";
-    r.scene.materials = kRoomMaterials;
-    r.scene.gloss = SurfaceGloss(r.scene.materials, r.scene.mesh);
+    set_materials(r.scene, kRoomMaterials);
     const RayScene rays(r.scene.mesh);
     const GBuffer gbuffer(r.scene.camera, rays, 16, 7, "room");  // another sampling than the analysis's
     r.scene.photo = glossy_photo(r.scene, rays, gbuffer, r.scene.lights, 1.0f, &r.highlights);
@@ -150,8 +146,7 @@ TEST(GlossyRoom, AlbedoWithoutHighlightsAndHighlightsThatMove) {
 
   const auto glossy = analysed(Scene(r.scene));
   Scene matte_scene = r.scene;
-  matte_scene.materials.clear();
-  matte_scene.gloss = SurfaceGloss();
+  set_materials(matte_scene, {});
   const auto matte = analysed(std::move(matte_scene));
 
   const auto albedo_db = [&](const AnalysedScene& a) {

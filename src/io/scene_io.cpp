@@ -550,7 +550,8 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   if (auto* bg = r.optional(root, "background")) scene.background = r.color(*bg, "/background");
   if (auto* reference = r.optional(root, "reference")) scene.reference = parse_reference(r, *reference);
   if (auto* shot = r.optional(root, "shot")) scene.shot = parse_shot(r, *shot, path);
-  if (auto* materials = r.optional(root, "materials")) scene.materials = parse_materials(r, *materials);
+  std::map<std::string, Gloss> materials;
+  if (auto* given = r.optional(root, "materials")) materials = parse_materials(r, *given);
   std::vector<std::pair<const json*, std::string>> probe_specs;
   if (auto* probes = r.optional(root, "probes")) {
     if (!probes->is_array()) r.fail("/probes", "expected an array of probes");
@@ -563,8 +564,8 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   scene.camera = Camera(camera, scene.photo.width, scene.photo.height);
   scene.mesh = load_mesh(scene.geometry_path, progress);
   if (scene.reference) check_reference_object(r, *scene.reference, scene.geometry_path, scene.mesh);
-  check_material_names(r, scene.materials, scene.geometry_path, scene.mesh);
-  scene.gloss = SurfaceGloss(scene.materials, scene.mesh);
+  check_material_names(r, materials, scene.geometry_path, scene.mesh);
+  set_materials(scene, std::move(materials));
   for (const auto& [spec, ptr] : probe_specs) scene.probes.push_back(parse_probe(r, *spec, ptr, path));
   return scene;
 }

@@ -54,6 +54,13 @@ class GBuffer {
   // Whether every sample of the pixel sees the surface its centre-most
   // sample sees (no silhouette, crease or background within it).
   bool one_surface(int x, int y) const;
+  // The triangle every sample of the pixel sees, where all see one (nearly
+  // every pixel): known without recomputing a sample.
+  std::optional<uint32_t> single_triangle(int x, int y) const {
+    const uint32_t slot = slot_[size_t(y) * width_ + x];
+    if (slot == kSeesNothing || (slot & kKept)) return std::nullopt;
+    return slot;
+  }
   // Bytes held per pixel (docs/benchmarks.md, "Memory").
   double bytes_per_pixel() const;
 

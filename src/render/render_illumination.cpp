@@ -6,62 +6,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "render/pixel_estimate.h"
+
 namespace relight {
 
 namespace {
-
-// Each part draws its own random numbers at a pixel, so that the noise of
-// one does not depend on how many the other drew.
-constexpr uint64_t kPhotoStream = 0, kDirectStream = 1, kIndirectStream = 2, kKeptPathStream = 3;
-
-struct PixelEstimate {
-  Vec3 mean = Vec3::Zero();
-  float variance = 0.0f;  // of the mean's luminance
-};
-
-// A pixel's estimates summed: their mean, and the variance of that mean's
-// luminance (which the denoiser weighs by).
-class EstimateSum {
- public:
-  void add(const Vec3& v) {
-    sum_ += v;
-    const double l = luminance(v);
-    lum_sum_ += l;
-    lum_sq_sum_ += l * l;
-    ++n_;
-  }
-  PixelEstimate estimate() const {
-    PixelEstimate e;
-    if (n_) {
-      e.mean = sum_ / float(n_);
-      const double mean = lum_sum_ / n_;
-      e.variance = float(std::max(0.0, lum_sq_sum_ / n_ - mean * mean) / n_);
-    }
-    return e;
-  }
-
- private:
-  Vec3 sum_ = Vec3::Zero();
-  double lum_sum_ = 0.0, lum_sq_sum_ = 0.0;
-  int n_ = 0;
-};
-
-// The mean of max(paths_per_pixel, sub-samples) estimates spread evenly over
-// the pixel's sub-samples, over those that see geometry:
-// estimate(surface, path, paths, rng) gives one.
-template <class Estimate>
-PixelEstimate estimate_pixel(const GBuffer& g, int x, int y, int paths_per_pixel, Rng& rng, const Estimate& estimate) {
-  const int spp = g.samples_per_pixel();
-  const int paths = std::max(paths_per_pixel, spp);
-  thread_local std::vector<GBufferSample> samples;  // fetched once: most are recomputed when asked for
-  g.pixel_samples(x, y, samples);
-  EstimateSum sum;
-  for (int i = 0; i < paths; ++i) {
-    const GBufferSample s = samples[size_t(i % spp)];
-    if (s.hit) sum.add(estimate(s.surface, i, paths, rng));
-  }
-  return sum.estimate();
-}
 
 // The environment and interreflection at a pixel: its paths' first bounces
 // a randomly shifted Hammersley set, spread over the hemisphere evenly;

@@ -5,11 +5,21 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/pixel_estimate.h"
+
 namespace relight {
 namespace {
 
-// The Rng stream of the specular estimates (render_illumination.cpp's are 0-3).
-constexpr uint64_t kSpecularStream = 5;
+// Whether any sample of the pixel sees a glossy triangle (`samples`: room
+// for the pixel's own; filled only where its samples are kept, never
+// recomputed).
+bool pixel_sees_gloss(const GBuffer& g, int x, int y, const SurfaceGloss& gloss, std::vector<GBufferSample>& samples) {
+  if (const std::optional<uint32_t> triangle = g.single_triangle(x, y)) return gloss.at(*triangle);
+  if (g.coverage(x, y) <= 0.0f) return false;
+  g.pixel_samples(x, y, samples);
+  return std::any_of(samples.begin(), samples.end(),
+                     [&](const GBufferSample& s) { return s.hit && gloss.at(s.surface.prim); });
+}
 
 }  // namespace
 
@@ -35,38 +45,28 @@ Vec3 SpecularReflection::radiance(const SurfacePoint& p, const Vec3& eye, Rng& r
 
 bool sees_gloss(const GBuffer& gbuffer, const SurfaceGloss& gloss) {
   if (gloss.all_matte()) return false;
+  std::vector<GBufferSample> samples;
   for (int y = 0; y < gbuffer.height(); ++y)
     for (int x = 0; x < gbuffer.width(); ++x)
-      if (const GBufferSample s = gbuffer.central(x, y); s.hit && gloss.at(s.surface.prim)) return true;
+      if (pixel_sees_gloss(gbuffer, x, y, gloss, samples)) return true;
   return false;
 }
 
 Image render_specular(const GBuffer& g, const Camera& camera, const SpecularReflection& specular, int paths_per_pixel,
                       uint64_t seed, Progress& progress, const std::string& label) {
-  const int w = g.width(), h = g.height(), spp = g.samples_per_pixel();
+  const int w = g.width(), h = g.height();
   Image image(w, h);
   if (specular.gloss().all_matte()) return image;
-  const int paths = std::max(paths_per_pixel, spp);
   progress.begin(label, h);
   tbb::parallel_for(0, h, [&](int y) {
     std::vector<GBufferSample> samples;
     for (int x = 0; x < w; ++x) {
-      g.pixel_samples(x, y, samples);
-      const bool glossy = std::any_of(samples.begin(), samples.end(), [&](const GBufferSample& s) {
-        return s.hit && specular.gloss().at(s.surface.prim);
-      });
-      if (!glossy) continue;
+      if (!pixel_sees_gloss(g, x, y, specular.gloss(), samples)) continue;
       const size_t i = size_t(y) * w + x;
       Rng rng(seed, i, kSpecularStream);
-      Vec3 sum = Vec3::Zero();
-      int hits = 0;
-      for (int k = 0; k < paths; ++k) {
-        const GBufferSample& s = samples[size_t(k % spp)];
-        if (!s.hit) continue;
-        sum += specular.radiance(s.surface, camera.position(), rng);
-        ++hits;
-      }
-      if (hits) image.pixels[i] = sum / float(hits);
+      image.pixels[i] = estimate_pixel(g, x, y, paths_per_pixel, rng, [&](const SurfacePoint& p, int, int, Rng& r) {
+                          return specular.radiance(p, camera.position(), r);
+                        }).mean;
     }
     progress.advance();
   });

@@ -66,6 +66,12 @@ struct Scene {
   Shot shot;
 };
 
+// Sets the scene's `materials` and puts them on its mesh's triangles (`gloss`).
+inline void set_materials(Scene& scene, std::map<std::string, Gloss> materials) {
+  scene.materials = std::move(materials);
+  scene.gloss = SurfaceGloss(scene.materials, scene.mesh);
+}
+
 // A rig's new environment (FORMAT.md, "A new environment in a rig"): a
 // constant radiance, or an image mapped as a probe's (its position unused:
 // the environment is infinitely distant). Shared: rigs are copied on every
