@@ -27,9 +27,9 @@ struct AlbedoImages {
   std::vector<uint8_t> edge_mismatch;
   float edge_offset_px = 0.0f;  // how far the photo's edges lie from the illumination's, at most
 
-  // Triangles the camera does not see whose albedo a probe shows (their
-  // radiance in the probe over their illumination): for the light bounced
-  // off them in later renders.
+  // Triangles the camera does not see, or shows by too few whole pixels
+  // (kFewPixels), whose albedo a probe shows (their radiance in the probe
+  // over their illumination): for the light bounced off them in later renders.
   std::vector<TriangleAlbedo> unseen_triangles;
 };
 

@@ -400,11 +400,13 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   // bounce light makes it too bright, which makes too much bounce light), so
   // each render bounces light off the mean of the last two albedos.
   Image bounce = result.albedo.albedo;
-  // The triangles no pixel shows take the albedo the probes show them with.
+  // The triangles the photo shows too little of take the albedo the probes
+  // show them with.
   const auto unseen_triangles = [&](const SurfaceAlbedo& albedo) {
     if (!photo_radiance) return std::vector<TriangleAlbedo>();
-    std::vector<uint8_t> wanted = triangles_in_view(gbuffer, scene.mesh.triangles.size());
-    for (uint8_t& w : wanted) w = !w;
+    const std::vector<uint32_t> shown = whole_pixels_per_triangle(gbuffer, scene.mesh.triangles.size());
+    std::vector<uint8_t> wanted(shown.size());
+    for (size_t t = 0; t < shown.size(); ++t) wanted[t] = shown[t] < kFewPixels;
     const Integrator integrator(rays, lighting, &albedo, integrator_options, photo_radiance.get());
     return photo_radiance->probe_albedo(integrator, wanted, kProbeAlbedoPaths, options.seed);
   };

@@ -2,11 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace relight {
 
 namespace {
 Vec3 clamp01(const Vec3& v) { return v.cwiseMax(0.0f).cwiseMin(1.0f); }
+
+// The triangle pixel (x, y) shows whole (see whole_pixels_per_triangle).
+std::optional<uint32_t> whole_pixel_triangle(const GBuffer& gbuffer, int x, int y) {
+  if (!gbuffer.one_surface(x, y)) return std::nullopt;
+  return gbuffer.central(x, y).surface.prim;
+}
 }  // namespace
 
 PhotoAlbedo::PhotoAlbedo(const Camera& camera, const GBuffer& gbuffer, const Image& albedo, const Vec3& unseen,
@@ -18,27 +25,27 @@ PhotoAlbedo::PhotoAlbedo(const Camera& camera, const GBuffer& gbuffer, const Ima
       if (const auto s = gbuffer.central(x, y); s.hit) triangles = std::max<size_t>(triangles, s.surface.prim + 1);
   for (const TriangleAlbedo& t : unseen_triangles) triangles = std::max<size_t>(triangles, t.triangle + 1);
   std::vector<Vec3> sum(triangles, Vec3::Zero());
-  std::vector<int> count(triangles, 0);
+  std::vector<uint32_t> count(triangles, 0);
   for (int y = 0; y < gbuffer.height(); ++y)
     for (int x = 0; x < gbuffer.width(); ++x)
-      if (const auto s = gbuffer.central(x, y); s.hit) {
-        sum[s.surface.prim] += clamp01(albedo.at(x, y));
-        ++count[s.surface.prim];
+      if (const auto t = whole_pixel_triangle(gbuffer, x, y)) {
+        sum[*t] += clamp01(albedo.at(x, y));
+        ++count[*t];
       }
   triangle_mean_.resize(triangles);
   for (size_t t = 0; t < triangles; ++t)
     triangle_mean_[t] = count[t] ? Vec3(sum[t] / float(count[t])) : clamp01(unseen);
   for (const TriangleAlbedo& t : unseen_triangles)
-    if (!count[t.triangle]) triangle_mean_[t.triangle] = clamp01(t.albedo);
+    if (count[t.triangle] < kFewPixels) triangle_mean_[t.triangle] = clamp01(t.albedo);
   triangle_mean_.push_back(clamp01(unseen));  // the last entry: any triangle beyond those seen
 }
 
-std::vector<uint8_t> triangles_in_view(const GBuffer& gbuffer, size_t triangles) {
-  std::vector<uint8_t> seen(triangles, 0);
+std::vector<uint32_t> whole_pixels_per_triangle(const GBuffer& gbuffer, size_t triangles) {
+  std::vector<uint32_t> count(triangles, 0);
   for (int y = 0; y < gbuffer.height(); ++y)
     for (int x = 0; x < gbuffer.width(); ++x)
-      if (const auto s = gbuffer.central(x, y); s.hit && s.surface.prim < triangles) seen[s.surface.prim] = 1;
-  return seen;
+      if (const auto t = whole_pixel_triangle(gbuffer, x, y); t && *t < triangles) ++count[*t];
+  return count;
 }
 
 Vec3 PhotoAlbedo::at(const SurfacePoint& p) const {
