@@ -11,6 +11,7 @@ Vec3 clamp01(const Vec3& v) { return v.cwiseMax(0.0f).cwiseMin(1.0f); }
 
 // The triangle pixel (x, y) shows whole (see whole_pixels_per_triangle).
 std::optional<uint32_t> whole_pixel_triangle(const GBuffer& gbuffer, int x, int y) {
+  if (const auto t = gbuffer.single_triangle(x, y)) return t;  // nearly every pixel: no sample recomputed
   if (!gbuffer.one_surface(x, y)) return std::nullopt;
   return gbuffer.central(x, y).surface.prim;
 }
@@ -19,19 +20,22 @@ std::optional<uint32_t> whole_pixel_triangle(const GBuffer& gbuffer, int x, int 
 PhotoAlbedo::PhotoAlbedo(const Camera& camera, const GBuffer& gbuffer, const Image& albedo, const Vec3& unseen,
                          std::span<const TriangleAlbedo> unseen_triangles)
     : camera_(camera), gbuffer_(gbuffer), albedo_(albedo) {
-  size_t triangles = 0;
-  for (int y = 0; y < gbuffer.height(); ++y)
-    for (int x = 0; x < gbuffer.width(); ++x)
-      if (const auto s = gbuffer.central(x, y); s.hit) triangles = std::max<size_t>(triangles, s.surface.prim + 1);
-  for (const TriangleAlbedo& t : unseen_triangles) triangles = std::max<size_t>(triangles, t.triangle + 1);
-  std::vector<Vec3> sum(triangles, Vec3::Zero());
-  std::vector<uint32_t> count(triangles, 0);
+  // Sized by the triangles seen whole or listed: any other takes the last
+  // entry, the default.
+  std::vector<Vec3> sum;
+  std::vector<uint32_t> count;
+  const auto reach = [&](uint32_t t) {
+    if (t >= sum.size()) sum.resize(t + 1, Vec3::Zero()), count.resize(t + 1, 0);
+  };
   for (int y = 0; y < gbuffer.height(); ++y)
     for (int x = 0; x < gbuffer.width(); ++x)
       if (const auto t = whole_pixel_triangle(gbuffer, x, y)) {
+        reach(*t);
         sum[*t] += clamp01(albedo.at(x, y));
         ++count[*t];
       }
+  for (const TriangleAlbedo& t : unseen_triangles) reach(t.triangle);
+  const size_t triangles = sum.size();
   triangle_mean_.resize(triangles);
   for (size_t t = 0; t < triangles; ++t)
     triangle_mean_[t] = count[t] ? Vec3(sum[t] / float(count[t])) : clamp01(unseen);
