@@ -9,7 +9,7 @@
 // (RELIGHT_SCENES overrides), else on the example room. And a new sky
 // turning on the outdoor scene: from the turn to the frame that shows it.
 // Results and the machine they ran on: docs/benchmarks.md, "Interactive
-// relighting".
+// relighting". And a dragged lamp's highlights on a glossy view alone.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -21,6 +21,7 @@
 #include "core/statistics.h"
 #include "io/scene_io.h"
 #include "relight/session.h"
+#include "render/specular.h"
 #include "room_scene.h"
 
 using namespace relight;
@@ -323,6 +324,35 @@ void BM_TurnTheSky(benchmark::State& state) {
                  " turning the sunset sky of outdoor");
 }
 BENCHMARK(BM_TurnTheSky)->Iterations(30)->MeasureProcessCPUTime()->UseManualTime()->Unit(benchmark::kMillisecond);
+
+// A dragged lamp's highlights on the glossy bookcase of tests/data/glossy
+// (its floor and blue ball glossy) at 1280x960, outside a session: the CPU
+// backend's render of its direct light, and MovingHighlights from it (what
+// a frame adds on a glossy view). Real time, both cores.
+void BM_MovingHighlights(benchmark::State& state) {
+  open_session().reset();
+  const fs::path folder = fs::path(RELIGHT_SOURCE_DIR) / "tests" / "data" / "glossy" / "glossy_bookcase";
+  const Scene scene = load_scene(folder / "scene.json");
+  const Camera camera(scene.camera.spec(), 1280, 960);
+  const RayScene rays(scene.mesh);
+  const GBuffer gbuffer(camera, rays, 1, 1, "moving highlights");
+  const PixelSurfaces surfaces = PixelSurfaces::central_samples(gbuffer);
+  const Light lamp = unit_light(load_rig(folder / "rigs" / "move_lamp.json").lights[0]);
+  CpuDirectLight backend(surfaces, rays);
+  const MovingHighlights highlights(surfaces, scene.gloss, camera.position());
+  Image direct, out(camera.width(), camera.height());
+  backend.render(lamp, direct);
+  const bool only_highlights = state.range(0) == 1;
+  for (auto _ : state) {
+    if (only_highlights)
+      highlights.render(lamp, direct, out);
+    else
+      backend.render(lamp, direct);
+  }
+  state.counters["glossy_pixels"] = double(highlights.pixels().size());
+  state.SetLabel(only_highlights ? "moving highlights" : "cpu backend's direct light");
+}
+BENCHMARK(BM_MovingHighlights)->Arg(0)->Arg(1)->Iterations(50)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

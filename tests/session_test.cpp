@@ -441,45 +441,69 @@ const AnalysedScene& glossy_room() {
   return *r;
 }
 
-TEST(Session, GlossySurfacesShowTheHighlightsAndConvergeToTheOfflineRender) {
+// The projection of `change` on `highlights` times the coverage: 1 where
+// the change is those highlights, 0 where it holds none of them.
+double share_of_highlights(const Image& change, const Image& highlights, const std::vector<float>& coverage) {
+  double along = 0.0, norm = 0.0;
+  for (size_t i = 0; i < highlights.size(); ++i) {
+    const Vec3 h = coverage[i] * highlights.pixels[i];
+    along += change.pixels[i].dot(h);
+    norm += h.dot(h);
+  }
+  return along / norm;
+}
+
+Image difference(const Image& a, const Image& b) {
+  Image d(a.width, a.height);
+  for (size_t i = 0; i < d.size(); ++i) d.pixels[i] = a.pixels[i] - b.pixels[i];
+  return d;
+}
+
+TEST(Session, GlossySurfacesShowTheHighlightsWhileALightMovesAndConvergeToTheOfflineRender) {
   const AnalysedScene& r = glossy_room();
   SessionOptions options = quick_options();
-  // The highlights' and the bounce light's refinements slow enough (many
-  // paths) that the frames before and after the highlights' are caught.
   options.bounce_paths = 64;
   options.final_render.paths_per_pixel = 64;
+  // Refinement waits long enough for the interactive frame to be caught.
+  options.settle = std::chrono::milliseconds(1000);
   Rig rig = example::evening_rig();
   rig.lights.resize(1);  // the lamp
   RelightSession session(r, rig, options);
-  // The frame just before the highlights' refinement (the fourth: after the
-  // lamp's antialiased and soft light and the environment) and just after it.
-  const auto frame_after = [&](uint64_t refinements) {
-    while (session.stats().refinements < refinements) std::this_thread::sleep_for(std::chrono::microseconds(200));
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));  // composed and published
-    return session.frame();
-  };
-  const Frame before = frame_after(3), after = frame_after(4);
-  ASSERT_NE(after.quality, FrameQuality::converged);
-  const NewIllumination renderer(r);
-  Lighting lamp;
-  lamp.lights = rig.lights;
-  const Image highlights =
-      renderer.highlights(r.gbuffer(), r.scene().camera, lamp, {options.bounce_paths, options.final_render.max_bounces},
-                          Progress::silent());
-  ASSERT_FALSE(highlights.empty());
-  // What the refinement added, projected on the lamp's highlights (1: they
-  // are what it added).
-  double along = 0.0, norm = 0.0;
-  for (size_t i = 0; i < highlights.size(); ++i) {
-    const Vec3 h = r.analysis().coverage[i] * highlights.pixels[i];
-    along += (after.image->pixels[i] - before.image->pixels[i]).dot(h);
-    norm += h.dot(h);
-  }
-  std::printf("[ figures  ] the highlights' refinement added %.3f of the lamp's highlights\n", along / norm);
-  EXPECT_NEAR(along / norm, 1.0, 0.05);
-  keep_image("glossy_refined", *after.image);
+  const Frame at_first_place = session.wait_until_converged();
 
+  // The lamp dragged 60 cm along the wall: the frame that first shows it
+  // there, against the frame it converges to.
+  const NewIllumination renderer(r);
+  const auto highlights_of = [&](const Rig& lit, SpecularParts parts) {
+    Lighting lighting;
+    lighting.lights = lit.lights;
+    return renderer.highlights(r.gbuffer(), r.scene().camera, lighting, options.final_render, Progress::silent(),
+                               parts);
+  };
+  const Image own_highlights_before = highlights_of(rig, SpecularParts::lights);
+  rig.lights[0].position += Vec3(-0.6f, 0.0f, 0.0f);
+  const Frame moved = session.wait_for_edit(session.set_light(0, rig.lights[0]));
+  ASSERT_EQ(moved.quality, FrameQuality::interactive);
   const Frame converged = session.wait_until_converged();
+  const Image highlights_after = highlights_of(rig, SpecularParts::all);
+  ASSERT_FALSE(highlights_after.empty());
+  const Image left = difference(*converged.image, *moved.image);
+  const std::vector<float>& coverage = r.analysis().coverage;
+  // What the converged frame adds to the moving one: little of the lamp's
+  // highlights where it now is (its own move with it; the surfaces the
+  // floor mirrors are lit as they were, as its bounce light is), and next
+  // to none of its own where it was (-1: left behind there).
+  const double of_new = share_of_highlights(left, highlights_after, coverage);
+  const double of_old = share_of_highlights(left, own_highlights_before, coverage);
+  std::printf(
+      "[ figures  ] the lamp moved: the converged frame adds %.3f of its highlights there, %.3f of its own "
+      "where it was\n",
+      of_new, of_old);
+  EXPECT_LT(std::abs(of_new), 0.25);
+  EXPECT_GT(of_old, -0.3);
+  keep_image("glossy_moved", *moved.image);
+  keep_image("glossy_converged", *converged.image);
+  keep_image("glossy_first_place", *at_first_place.image);
   EXPECT_EQ(max_difference(*converged.image, render_rig(r, rig, options.final_render, Progress::silent())), 0.0f);
 }
 

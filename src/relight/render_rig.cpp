@@ -112,14 +112,14 @@ Image NewIllumination::render_background(const GBuffer& gbuffer, const Camera& c
 }
 
 Image NewIllumination::highlights(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
-                                  const RenderOptions& options, Progress& progress) const {
+                                  const RenderOptions& options, Progress& progress, SpecularParts parts) const {
   const SurfaceGloss& gloss = analysed_.scene().gloss;
   if (!sees_gloss(gbuffer, gloss)) return Image();
   const Integrator integrator(analysed_.rays(), lighting, &bounce_albedo_, integrator_options(options));
   const ReflectedRadiance surfaces = [&](const SurfacePoint& hit, Rng& rng) -> Vec3 {
     return bounce_albedo_.at(hit).cwiseProduct(integrator.illumination(hit, rng));
   };
-  const SpecularReflection specular(integrator, gloss, surfaces);
+  const SpecularReflection specular(integrator, gloss, surfaces, parts);
   const IlluminationOptions settings = illumination_options(options);
   return render_specular(gbuffer, camera, specular, settings.paths_per_pixel, settings.seed, progress);
 }

@@ -9,6 +9,7 @@
 #include "analysis/analysed_scene.h"
 #include "analysis/surface_albedo.h"
 #include "render/render_illumination.h"
+#include "render/specular.h"
 
 namespace relight {
 
@@ -89,10 +90,10 @@ class NewIllumination {
   Image render_background(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting) const;
   // The highlights `lighting` makes on the glossy surfaces the pixels of
   // `gbuffer` see (render/specular.h), a reflected ray meeting a surface
-  // taking the recovered albedo times its light; an empty image where no
-  // pixel sees a glossy surface.
+  // taking the recovered albedo times its light (or the one part `parts`
+  // names); an empty image where no pixel sees a glossy surface.
   Image highlights(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting, const RenderOptions& options,
-                   Progress& progress) const;
+                   Progress& progress, SpecularParts parts = SpecularParts::all) const;
 
  private:
   const AnalysedScene& analysed_;

@@ -83,10 +83,15 @@ struct RelightSession::LightCache {
   Stage stage = Stage::none;
   Image bounce;  // its interreflection, unit emission; empty: none yet
   uint64_t bounce_geometry = 0;
-  // Its highlights on glossy surfaces, unit emission (render/specular.h);
-  // empty: none yet, or none seen.
+  // Its highlights on glossy surfaces, unit emission (render/specular.h),
+  // in two parts; empty: none yet, or none seen. Its own highlights: refined
+  // for highlight_geometry, or its MovingHighlights where it last moved to
+  // (highlight_moving). And the surfaces it lights as the gloss mirrors
+  // them: refined only, and kept while it moves, as its interreflection is.
   Image highlight;
+  Image highlight_reflected;
   uint64_t highlight_geometry = 0;
+  bool highlight_moving = false;
 
   bool pending() const { return light.enabled && direct_geometry != geometry; }
 };
@@ -111,7 +116,9 @@ struct RelightSession::Job {
   Rig rig;                                    // final
   Image result;
   Image background;  // environment_preview, environment: of a new environment
-  Image highlight;   // environment: its highlights
+  // environment: its highlights; interactive: the light's moving highlights;
+  // highlight: the reflected part (its own highlights are the result)
+  Image highlight;
   std::atomic<bool> cancel{false};
   Progress progress{false};  // render_illumination's cancel flag
   bool done = false;
@@ -157,6 +164,11 @@ RelightSession::RelightSession(const AnalysedScene& analysed, const Rig& rig, co
   }
   if (!fast_) fast_ = std::make_unique<CpuDirectLight>(view_->surfaces(), analysed_.rays());
   sees_gloss_ = sees_gloss(view_->gbuffer(), analysed_.scene().gloss);
+  if (sees_gloss_) {
+    moving_highlights_ =
+        std::make_unique<MovingHighlights>(view_->surfaces(), analysed_.scene().gloss, view_->camera().position());
+    if (moving_highlights_->empty()) moving_highlights_.reset();
+  }
 
   environment_scale_ = rig.environment_scale;
   for (const Light& light : rig.lights) {
@@ -463,6 +475,12 @@ void RelightSession::run_job(Job& job) {
       case Kind::interactive:
         job.result = std::move(spare_);  // rendering into an image of the right size allocates nothing
         fast_->render(job.light, job.result);
+        if (moving_highlights_) {
+          job.highlight = std::move(spare_highlight_);
+          if (job.highlight.width != view.width() || job.highlight.height != view.height())
+            job.highlight = Image(view.width(), view.height());
+          moving_highlights_->render(job.light, job.result, job.highlight);
+        }
         job.done = true;
         break;
       case Kind::antialiased:  // every sub-pixel sample, one light sample each
@@ -483,7 +501,10 @@ void RelightSession::run_job(Job& job) {
       case Kind::highlight: {
         Lighting lighting;
         lighting.lights = {job.light};
-        job.result = illumination_.highlights(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress);
+        job.result = illumination_.highlights(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress,
+                                              SpecularParts::lights);
+        job.highlight = illumination_.highlights(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress,
+                                                 SpecularParts::reflected);
         job.done = true;
         break;
       }
@@ -555,11 +576,12 @@ void RelightSession::install_locked(Job& job) {
   if (job.kind != Kind::interactive && job.geometry != cache->geometry) return;
   switch (job.kind) {
     case Kind::interactive:
-      // Its highlights were of where it was: the frame goes on without them.
-      if (!cache->highlight.empty()) {
-        cache->highlight = Image();
-        base_valid_ = false;
-      }
+      // Its own highlights follow it (none on a matte view); refined ones
+      // were of where it was, and were in the base if it was the focus.
+      if (!cache->highlight_moving && !cache->highlight.empty()) base_valid_ = false;
+      std::swap(cache->highlight, job.highlight);
+      if (cache->highlight_moving) spare_highlight_ = std::move(job.highlight);
+      cache->highlight_moving = !cache->highlight.empty();
       std::swap(cache->direct, job.result);
       if (job.result.width == view_->width() && job.result.height == view_->height()) spare_ = std::move(job.result);
       cache->direct_geometry = job.geometry;
@@ -578,7 +600,9 @@ void RelightSession::install_locked(Job& job) {
       break;
     case Kind::highlight:
       cache->highlight = std::move(job.result);
+      cache->highlight_reflected = std::move(job.highlight);
       cache->highlight_geometry = job.geometry;
+      cache->highlight_moving = false;
       base_valid_ = false;  // and every light's highlights
       break;
     default:
@@ -634,29 +658,33 @@ void RelightSession::compose_and_publish(std::unique_lock<std::mutex>& lock) {
     const Image& background = environment_->background.empty() ? layers.background : environment_->background;
     const int w = view_->width(), h = view_->height();
     const auto term = [](const Image& image, size_t i) { return image.empty() ? Vec3::Zero() : image.pixels[i]; };
+    const std::vector<float>& coverage = view_->coverage();
     if (c.rebuild_base) {
-      // Everything but the focus light's direct light: the diffuse light
-      // times the albedo, the highlights times the coverage.
+      // Everything but the focus light's direct light and its moving
+      // highlights: the diffuse light times the albedo, the highlights times
+      // the coverage.
       if (base_.width != w || base_.height != h) base_ = Image(w, h);
-      const std::vector<float>& coverage = view_->coverage();
       tbb::parallel_for(tbb::blocked_range<size_t>(0, base_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
           Vec3 light = c.scale * term(environment_->surface, i);
           Vec3 highlight = c.scale * term(environment_->highlight, i);
           for (const auto& t : c.others) {
             light += t.emission.cwiseProduct(term(t.light->direct, i) + term(t.light->bounce, i));
-            highlight += t.emission.cwiseProduct(term(t.light->highlight, i));
+            highlight += t.emission.cwiseProduct(term(t.light->highlight, i) + term(t.light->highlight_reflected, i));
           }
           if (c.focus) {
-            light += c.focus->emission.cwiseProduct(term(c.focus->light->bounce, i));
-            highlight += c.focus->emission.cwiseProduct(term(c.focus->light->highlight, i));
+            const LightCache& f = *c.focus->light;
+            light += c.focus->emission.cwiseProduct(term(f.bounce, i));
+            highlight += c.focus->emission.cwiseProduct(term(f.highlight_reflected, i) +
+                                                        (f.highlight_moving ? Vec3::Zero() : term(f.highlight, i)));
           }
           base_.pixels[i] = layers.albedo_coverage.pixels[i].cwiseProduct(light) + coverage[i] * highlight +
                             c.scale * background.pixels[i];
         }
       });
     }
-    const Image* focus_direct = c.focus && !c.focus->light->direct.empty() ? &c.focus->light->direct : nullptr;
+    const LightCache* focus = c.focus ? c.focus->light.get() : nullptr;
+    const Image* focus_direct = focus && !focus->direct.empty() ? &focus->direct : nullptr;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, base_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i)
         out->pixels[i] = focus_direct
@@ -664,6 +692,16 @@ void RelightSession::compose_and_publish(std::unique_lock<std::mutex>& lock) {
                                                           c.focus->emission.cwiseProduct(focus_direct->pixels[i])))
                              : base_.pixels[i];
     });
+    // Its moving highlights, on the glossy pixels alone.
+    if (focus && focus->highlight_moving) {
+      const std::vector<uint32_t>& glossy = moving_highlights_->pixels();
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, glossy.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k != r.end(); ++k) {
+          const uint32_t i = glossy[k];
+          out->pixels[i] += coverage[i] * c.focus->emission.cwiseProduct(focus->highlight.pixels[i]);
+        }
+      });
+    }
   }
 
   lock.lock();

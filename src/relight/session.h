@@ -16,7 +16,8 @@
 // stay cached). Once no edit has come for a moment the view refines on a
 // worker thread — all sub-pixel samples, more light samples for soft
 // lights, the environment at full size, each light's highlights on glossy
-// surfaces (render/specular.h; a layer of their own, times the coverage),
+// surfaces (render/specular.h; a layer of their own, times the coverage;
+// while a light moves, its MovingHighlights, which cost no ray),
 // each light's interreflection — and
 // last runs the render of `relight render` (render_rig), so it converges to
 // exactly that image.
@@ -33,6 +34,7 @@
 
 #include "realtime/shadow_maps.h"
 #include "relight/view.h"
+#include "render/specular.h"
 
 namespace relight {
 
@@ -141,6 +143,7 @@ class RelightSession {
   std::unique_ptr<RelightView> view_;
   std::unique_ptr<DirectLightBackend> fast_;
   bool sees_gloss_ = false;  // the view sees a glossy surface: lights and environment get highlight layers
+  std::unique_ptr<MovingHighlights> moving_highlights_;  // a moving light's highlights; none on a matte view
   Backend backend_ = Backend::cpu;
   std::string backend_note_;
 
@@ -154,6 +157,7 @@ class RelightSession {
   bool base_valid_ = false;
   std::vector<std::shared_ptr<Image>> frame_buffers_;
   Image spare_;        // a light's last interactive image, to render the next one into
+  Image spare_highlight_;  // and its last moving highlights
   uint64_t edit_ = 1;  // edit 1: the rig the session started with
   std::chrono::steady_clock::time_point last_edit_time_;
   std::optional<RigEnvironment> new_environment_;  // the rig's; none: the scene's

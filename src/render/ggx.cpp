@@ -43,11 +43,20 @@ float GgxLobe::fresnel(float cos_d) const {
 
 float GgxLobe::f0() const { return fresnel(1.0f); }
 
-float GgxLobe::brdf(const Vec3& n, const Vec3& l, const Vec3& v) const {
-  const float nl = n.dot(l), nv = n.dot(v);
+float GgxLobe::brdf(const Vec3& n, const Vec3& l, const Vec3& v) const { return brdf(n, l, v, view_terms(n, v)); }
+
+GgxLobe::ViewTerms GgxLobe::view_terms(const Vec3& n, const Vec3& v) const {
+  const float nv = n.dot(v);
+  return {nv, nv > 0.0f ? shadowing(nv) : 0.0f};
+}
+
+float GgxLobe::brdf(const Vec3& n, const Vec3& l, const Vec3& v, const ViewTerms& view, float tail) const {
+  const float nl = n.dot(l), nv = view.cos_v;
   if (nl <= 0.0f || nv <= 0.0f) return 0.0f;
   const Vec3 h = (l + v).normalized();
-  return fresnel(l.dot(h)) * distribution(n.dot(h)) * shadowing(nl) * shadowing(nv) / (4.0f * nl * nv);
+  const float d = distribution(n.dot(h));
+  if (d * (kPi * alpha_ * alpha_) < tail) return 0.0f;  // the peak is 1 / (pi alpha^2)
+  return fresnel(l.dot(h)) * d * shadowing(nl) * view.shadowing_v / (4.0f * nl * nv);
 }
 
 float GgxLobe::pdf(const Vec3& n, const Vec3& l, const Vec3& v) const {

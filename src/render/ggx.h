@@ -22,6 +22,16 @@ class GgxLobe {
   // The BRDF f(l, v) (the same in every channel: a dielectric's highlight
   // takes the light's colour); 0 where l or v is below the surface.
   float brdf(const Vec3& n, const Vec3& l, const Vec3& v) const;
+  // The terms of the BRDF that depend on the view alone: worked out once
+  // for a view lit from many directions.
+  struct ViewTerms {
+    float cos_v = 0.0f, shadowing_v = 0.0f;
+  };
+  ViewTerms view_terms(const Vec3& n, const Vec3& v) const;
+  // brdf() with the view's terms given; 0 in the lobe's far tail, where the
+  // microfacets facing halfway between l and v are under `tail` times as
+  // many as at its peak (the rest of the terms then cost nothing).
+  float brdf(const Vec3& n, const Vec3& l, const Vec3& v, const ViewTerms& view, float tail = 0.0f) const;
   // A direction l from the lobe's visible normals (Heitz 2018) for view v,
   // u in [0,1)^2; weight = brdf x cos / pdf. False where l is below the
   // surface (the sample brings nothing).

@@ -1,5 +1,6 @@
 #include "render/specular.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -24,15 +25,17 @@ bool pixel_sees_gloss(const GBuffer& g, int x, int y, const SurfaceGloss& gloss,
 }  // namespace
 
 SpecularReflection::SpecularReflection(const Integrator& lights, const SurfaceGloss& gloss,
-                                       const ReflectedRadiance& surfaces)
-    : lights_(lights), gloss_(gloss), surfaces_(surfaces) {}
+                                       const ReflectedRadiance& surfaces, SpecularParts parts)
+    : lights_(lights), gloss_(gloss), surfaces_(surfaces), parts_(parts) {}
 
 Vec3 SpecularReflection::radiance(const SurfacePoint& p, const Vec3& eye, Rng& rng) const {
   const Gloss* gloss = gloss_.at(p.prim);
   if (!gloss) return Vec3::Zero();
   const GgxLobe lobe(*gloss);
   const Vec3 v = (eye - p.position).normalized();
-  const Vec3 from_lights = lights_.specular_from_lights(p, lobe, v, rng);
+  const Vec3 from_lights =
+      parts_ == SpecularParts::reflected ? Vec3::Zero() : lights_.specular_from_lights(p, lobe, v, rng);
+  if (parts_ == SpecularParts::lights) return from_lights;
   Vec3 l;
   float weight;
   // A reflected ray below the facet would leave through it: it brings nothing.
@@ -72,6 +75,38 @@ Image render_specular(const GBuffer& g, const Camera& camera, const SpecularRefl
   });
   progress.end();
   return image;
+}
+
+MovingHighlights::MovingHighlights(const PixelSurfaces& surfaces, const SurfaceGloss& gloss, const Vec3& eye) {
+  if (gloss.all_matte()) return;
+  for (size_t i = 0; i < surfaces.surface.size(); ++i) {
+    if (!surfaces.hit[i]) continue;
+    const SurfacePoint& p = surfaces.surface[i];
+    const Gloss* g = gloss.at(p.prim);
+    if (!g) continue;
+    const GgxLobe lobe(*g);
+    const Vec3 to_eye = (eye - p.position).normalized();
+    pixels_.push_back(uint32_t(i));
+    glossy_.push_back({p.position, p.normal, to_eye, lobe, lobe.view_terms(p.normal, to_eye)});
+  }
+}
+
+void MovingHighlights::render(const Light& light, const Image& direct, Image& out) const {
+  constexpr float kTail = 1e-3f;
+  const LightSampler sampler(light);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, glossy_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      const uint32_t i = pixels_[k];
+      const Vec3& d = direct.pixels[i];
+      if (d.isZero()) {
+        out.pixels[i] = Vec3::Zero();
+        continue;
+      }
+      const GlossyPixel& g = glossy_[k];
+      const Vec3 l = sampler.direction_to_centre(g.position);
+      out.pixels[i] = (kPi * g.lobe.brdf(g.normal, l, g.to_eye, g.view, kTail)) * d;
+    }
+  });
 }
 
 }  // namespace relight

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <functional>
+#include <vector>
 
 #include "core/image.h"
 #include "core/progress.h"
@@ -26,15 +27,22 @@ namespace relight {
 // The radiance a surface point sends back along the reflected ray that met it.
 using ReflectedRadiance = std::function<Vec3(const SurfacePoint& hit, Rng& rng)>;
 
+// What a SpecularReflection estimates: the lights' own highlights (their
+// samples through the lobe), what the lobe's traced direction brings (the
+// lit surfaces and the environment the gloss mirrors), or both.
+enum class SpecularParts { all, lights, reflected };
+
 class SpecularReflection {
  public:
   // lights: an integrator of the lighting the highlights are of (its lights
   // and environment). Holds references to all three: they must outlive it.
-  SpecularReflection(const Integrator& lights, const SurfaceGloss& gloss, const ReflectedRadiance& surfaces);
+  SpecularReflection(const Integrator& lights, const SurfaceGloss& gloss, const ReflectedRadiance& surfaces,
+                     SpecularParts parts = SpecularParts::all);
   // One estimate of the radiance the gloss at p reflects towards `eye`:
   // every light sampled once (Integrator::specular_from_lights), and one
   // direction of the lobe traced — the environment where it leaves the
-  // scene, `surfaces` where it meets one. 0 where p is matte.
+  // scene, `surfaces` where it meets one —, or the one part `parts` names.
+  // 0 where p is matte.
   Vec3 radiance(const SurfacePoint& p, const Vec3& eye, Rng& rng) const;
   const SurfaceGloss& gloss() const { return gloss_; }
 
@@ -42,6 +50,7 @@ class SpecularReflection {
   const Integrator& lights_;
   const SurfaceGloss& gloss_;
   const ReflectedRadiance& surfaces_;
+  SpecularParts parts_;
 };
 
 // The specular radiance of every pixel: the mean, over the pixel's samples
@@ -52,5 +61,38 @@ Image render_specular(const GBuffer& gbuffer, const Camera& camera, const Specul
 
 // Whether any pixel of the G-buffer sees a glossy surface.
 bool sees_gloss(const GBuffer& gbuffer, const SurfaceGloss& gloss);
+
+// The highlights of one light as the interactive frame shows them while the
+// light moves: at each pixel whose one surface (PixelSurfaces) is glossy,
+// the lobe's BRDF towards the light's centre times the light's irradiance
+// there, shadowed — pi x that BRDF x the pixel's direct light as a fast
+// backend renders it (irradiance / pi, from the light's centre). No ray of
+// its own, so it follows the light at the frame's pace on either backend.
+// It leaves out what the refinement adds: the lit surfaces and environment
+// the lobe reflects, a soft light's extent, the pixel's other samples.
+// Its far tail, where the lobe is under a thousandth of its peak, is left
+// out: most of a narrow lobe's pixels then cost half the arithmetic.
+class MovingHighlights {
+ public:
+  MovingHighlights(const PixelSurfaces& surfaces, const SurfaceGloss& gloss, const Vec3& eye);
+  // The pixels whose surface is glossy, in order: the only ones render() writes.
+  const std::vector<uint32_t>& pixels() const { return pixels_; }
+  bool empty() const { return pixels_.empty(); }
+  // Writes the glossy pixels of `out` (the view's size; its other pixels are
+  // left as they are: zero in a fresh image) for `light`, whose direct light
+  // the fast backend rendered as `direct`.
+  void render(const Light& light, const Image& direct, Image& out) const;
+
+ private:
+  // What a glossy pixel's highlight needs, packed: a frame reads it for
+  // every glossy pixel.
+  struct GlossyPixel {
+    Vec3 position, normal, to_eye;  // to_eye: unit
+    GgxLobe lobe;
+    GgxLobe::ViewTerms view;
+  };
+  std::vector<uint32_t> pixels_;
+  std::vector<GlossyPixel> glossy_;  // one per pixels_
+};
 
 }  // namespace relight

@@ -175,6 +175,13 @@ LightSample LightSampler::unshadowed_from_centre(const Vec3& p, const Vec3& n) c
   return {};
 }
 
+Vec3 LightSampler::direction_to_centre(const Vec3& p) const {
+  if (light_.type == LightType::directional) return axis_;
+  const Vec3 to_centre = light_.position - p;
+  const float d2 = to_centre.squaredNorm();
+  return d2 > 0.0f ? Vec3(to_centre / std::sqrt(d2)) : Vec3::UnitZ();
+}
+
 // Point and spot lights: intensity I = power/(4 pi) (times the spot factor),
 // from a point or, with a radius, from a disc of radiance power/(4 pi^2 r^2)
 // facing the surface point (FORMAT.md). No u: the disc's centre.

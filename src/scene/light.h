@@ -95,6 +95,9 @@ class LightSampler {
   // spot or sun of any size, its irradiance without noise; for an area
   // light, one sample's (unshadowed_irradiance is its exact irradiance).
   LightSample unshadowed_from_centre(const Vec3& p, const Vec3& n) const;
+  // The unit direction from p towards the light's centre (a sun's: towards
+  // the sun); +z at the centre itself.
+  Vec3 direction_to_centre(const Vec3& p) const;
   const Light& light() const { return light_; }
 
  private:
