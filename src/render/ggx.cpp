@@ -54,8 +54,9 @@ float GgxLobe::brdf(const Vec3& n, const Vec3& l, const Vec3& v, const ViewTerms
   const float nl = n.dot(l), nv = view.cos_v;
   if (nl <= 0.0f || nv <= 0.0f) return 0.0f;
   const Vec3 h = (l + v).normalized();
-  const float d = distribution(n.dot(h));
-  if (d * (kPi * alpha_ * alpha_) < tail) return 0.0f;  // the peak is 1 / (pi alpha^2)
+  // Less its tail (the peak is 1 / (pi alpha^2)): no edge where it is cut.
+  const float d = distribution(n.dot(h)) - tail / (kPi * alpha_ * alpha_);
+  if (d <= 0.0f) return 0.0f;
   return fresnel(l.dot(h)) * d * shadowing(nl) * view.shadowing_v / (4.0f * nl * nv);
 }
 

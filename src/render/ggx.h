@@ -28,9 +28,10 @@ class GgxLobe {
     float cos_v = 0.0f, shadowing_v = 0.0f;
   };
   ViewTerms view_terms(const Vec3& n, const Vec3& v) const;
-  // brdf() with the view's terms given; 0 in the lobe's far tail, where the
-  // microfacets facing halfway between l and v are under `tail` times as
-  // many as at its peak (the rest of the terms then cost nothing).
+  // brdf() with the view's terms given, and its far tail left out: the
+  // microfacet distribution less `tail` times its peak, 0 where that is
+  // below 0 (the rest of the terms then cost nothing); continuous, so that
+  // a highlight shows no edge where its tail is cut.
   float brdf(const Vec3& n, const Vec3& l, const Vec3& v, const ViewTerms& view, float tail = 0.0f) const;
   // A direction l from the lobe's visible normals (Heitz 2018) for view v,
   // u in [0,1)^2; weight = brdf x cos / pdf. False where l is below the

@@ -87,13 +87,29 @@ MovingHighlights::MovingHighlights(const PixelSurfaces& surfaces, const SurfaceG
     const GgxLobe lobe(*g);
     const Vec3 to_eye = (eye - p.position).normalized();
     pixels_.push_back(uint32_t(i));
-    glossy_.push_back({p.position, p.normal, to_eye, lobe, lobe.view_terms(p.normal, to_eye)});
+    const Vec3 mirror = 2.0f * p.normal.dot(to_eye) * p.normal - to_eye;
+    glossy_.push_back({p.position, p.normal, to_eye, mirror, lobe, lobe.view_terms(p.normal, to_eye)});
   }
 }
 
+// The radius of the sphere a soft light highlights as: a soft point's, an
+// area light's disc of the same area; 0 for a hard point or a sun.
+float highlight_radius(const Light& light) {
+  switch (light.type) {
+    case LightType::point:
+    case LightType::spot:
+      return light.radius;
+    case LightType::area:
+      return std::sqrt(light.size.x() * light.size.y() / kPi);
+    case LightType::directional:
+      return 0.0f;
+  }
+  return 0.0f;
+}
+
 void MovingHighlights::render(const Light& light, const Image& direct, Image& out) const {
-  constexpr float kTail = 1e-3f;
   const LightSampler sampler(light);
+  const float radius = highlight_radius(light);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, glossy_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t k = r.begin(); k != r.end(); ++k) {
       const uint32_t i = pixels_[k];
@@ -103,8 +119,29 @@ void MovingHighlights::render(const Light& light, const Image& direct, Image& ou
         continue;
       }
       const GlossyPixel& g = glossy_[k];
-      const Vec3 l = sampler.direction_to_centre(g.position);
-      out.pixels[i] = (kPi * g.lobe.brdf(g.normal, l, g.to_eye, g.view, kTail)) * d;
+      Vec3 l;
+      float scale = kPi;
+      if (radius > 0.0f) {
+        const Vec3 to_centre = light.position - g.position;
+        const float distance = to_centre.norm(), alpha = g.lobe.alpha();
+        l = to_centre / distance;
+        // A light wider than the lobe (Karis 2013): the lobe towards the
+        // point of its sphere nearest the mirror ray, its peak lowered as the
+        // lobe's would be, widened by half the sphere's angular radius. A
+        // narrower one highlights as its centre does.
+        if (radius > alpha * distance) {
+          const Vec3 off_mirror = to_centre.dot(g.mirror) * g.mirror - to_centre;
+          const float off = off_mirror.norm();
+          l = (off > radius ? Vec3(to_centre + (radius / off) * off_mirror) : Vec3(to_centre + off_mirror))
+                  .normalized();
+          const float widened = std::min(1.0f, alpha + radius / (2.0f * distance));
+          scale *= (alpha / widened) * (alpha / widened);
+        }
+      } else {
+        l = sampler.direction_to_centre(g.position);
+      }
+      constexpr float kTail = 1e-3f;
+      out.pixels[i] = (scale * g.lobe.brdf(g.normal, l, g.to_eye, g.view, kTail)) * d;
     }
   });
 }

@@ -64,14 +64,16 @@ bool sees_gloss(const GBuffer& gbuffer, const SurfaceGloss& gloss);
 
 // The highlights of one light as the interactive frame shows them while the
 // light moves: at each pixel whose one surface (PixelSurfaces) is glossy,
-// the lobe's BRDF towards the light's centre times the light's irradiance
-// there, shadowed — pi x that BRDF x the pixel's direct light as a fast
-// backend renders it (irradiance / pi, from the light's centre). No ray of
-// its own, so it follows the light at the frame's pace on either backend.
-// It leaves out what the refinement adds: the lit surfaces and environment
-// the lobe reflects, a soft light's extent, the pixel's other samples.
-// Its far tail, where the lobe is under a thousandth of its peak, is left
-// out: most of a narrow lobe's pixels then cost half the arithmetic.
+// the lobe's BRDF towards the light times the light's irradiance there,
+// shadowed — pi x that BRDF x the pixel's direct light as a fast backend
+// renders it (irradiance / pi, from the light's centre). Towards the
+// light's centre, or for a soft point or an area light (as the sphere of
+// its area) wider than the lobe, its representative point with the lobe's
+// normalisation (Karis 2013). No ray of its own, so it follows the light at
+// the frame's pace on either backend. It leaves out what the refinement
+// adds: the lit surfaces and environment the lobe reflects, the pixel's
+// other samples. Its far tail is taken off (GgxLobe::brdf's `tail`, a
+// thousandth): most of a narrow lobe's pixels then cost half the arithmetic.
 class MovingHighlights {
  public:
   MovingHighlights(const PixelSurfaces& surfaces, const SurfaceGloss& gloss, const Vec3& eye);
@@ -87,7 +89,7 @@ class MovingHighlights {
   // What a glossy pixel's highlight needs, packed: a frame reads it for
   // every glossy pixel.
   struct GlossyPixel {
-    Vec3 position, normal, to_eye;  // to_eye: unit
+    Vec3 position, normal, to_eye, mirror;  // unit: to_eye, and mirror, to_eye reflected about the normal
     GgxLobe lobe;
     GgxLobe::ViewTerms view;
   };
