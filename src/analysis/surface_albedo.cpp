@@ -25,7 +25,9 @@ PhotoAlbedo::PhotoAlbedo(const Camera& camera, const GBuffer& gbuffer, const Ima
   std::vector<Vec3> sum;
   std::vector<uint32_t> count;
   const auto reach = [&](uint32_t t) {
-    if (t >= sum.size()) sum.resize(t + 1, Vec3::Zero()), count.resize(t + 1, 0);
+    if (t < sum.size()) return;
+    sum.resize(t + 1, Vec3::Zero());
+    count.resize(t + 1, 0);
   };
   for (int y = 0; y < gbuffer.height(); ++y)
     for (int x = 0; x < gbuffer.width(); ++x)

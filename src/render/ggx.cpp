@@ -43,7 +43,10 @@ float GgxLobe::fresnel(float cos_d) const {
 
 float GgxLobe::f0() const { return fresnel(1.0f); }
 
-float GgxLobe::brdf(const Vec3& n, const Vec3& l, const Vec3& v) const { return brdf(n, l, v, view_terms(n, v)); }
+float GgxLobe::brdf(const Vec3& n, const Vec3& l, const Vec3& v) const {
+  if (n.dot(l) <= 0.0f) return 0.0f;  // before the view's terms: the path tracer's light below the surface
+  return brdf(n, l, v, view_terms(n, v));
+}
 
 GgxLobe::ViewTerms GgxLobe::view_terms(const Vec3& n, const Vec3& v) const {
   const float nv = n.dot(v);
@@ -55,7 +58,7 @@ float GgxLobe::brdf(const Vec3& n, const Vec3& l, const Vec3& v, const ViewTerms
   if (nl <= 0.0f || nv <= 0.0f) return 0.0f;
   const Vec3 h = (l + v).normalized();
   // Less its tail (the peak is 1 / (pi alpha^2)): no edge where it is cut.
-  const float d = distribution(n.dot(h)) - tail / (kPi * alpha_ * alpha_);
+  const float d = distribution(n.dot(h)) - (tail > 0.0f ? tail / (kPi * alpha_ * alpha_) : 0.0f);
   if (d <= 0.0f) return 0.0f;
   return fresnel(l.dot(h)) * d * shadowing(nl) * view.shadowing_v / (4.0f * nl * nv);
 }

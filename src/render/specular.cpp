@@ -92,6 +92,8 @@ MovingHighlights::MovingHighlights(const PixelSurfaces& surfaces, const SurfaceG
   }
 }
 
+namespace {
+
 // The radius of the sphere a soft light highlights as: a soft point's, an
 // area light's disc of the same area; 0 for a hard point or a sun.
 float highlight_radius(const Light& light) {
@@ -107,6 +109,8 @@ float highlight_radius(const Light& light) {
   return 0.0f;
 }
 
+}  // namespace
+
 void MovingHighlights::render(const Light& light, const Image& direct, Image& out) const {
   const LightSampler sampler(light);
   const float radius = highlight_radius(light);
@@ -119,26 +123,20 @@ void MovingHighlights::render(const Light& light, const Image& direct, Image& ou
         continue;
       }
       const GlossyPixel& g = glossy_[k];
-      Vec3 l;
+      Vec3 l = sampler.direction_to_centre(g.position);
       float scale = kPi;
-      if (radius > 0.0f) {
-        const Vec3 to_centre = light.position - g.position;
-        const float distance = to_centre.norm(), alpha = g.lobe.alpha();
-        l = to_centre / distance;
-        // A light wider than the lobe (Karis 2013): the lobe towards the
-        // point of its sphere nearest the mirror ray, its peak lowered as the
-        // lobe's would be, widened by half the sphere's angular radius. A
-        // narrower one highlights as its centre does.
-        if (radius > alpha * distance) {
-          const Vec3 off_mirror = to_centre.dot(g.mirror) * g.mirror - to_centre;
-          const float off = off_mirror.norm();
-          l = (off > radius ? Vec3(to_centre + (radius / off) * off_mirror) : Vec3(to_centre + off_mirror))
-                  .normalized();
-          const float widened = std::min(1.0f, alpha + radius / (2.0f * distance));
-          scale *= (alpha / widened) * (alpha / widened);
-        }
-      } else {
-        l = sampler.direction_to_centre(g.position);
+      // A light wider than the lobe (Karis 2013): the lobe towards the point
+      // of its sphere nearest the mirror ray, its peak lowered as the lobe's
+      // would be, widened by half the sphere's angular radius. A narrower one
+      // highlights as its centre does.
+      const Vec3 to_centre = light.position - g.position;
+      const float distance = radius > 0.0f ? to_centre.norm() : 0.0f, alpha = g.lobe.alpha();
+      if (radius > alpha * distance && distance > 0.0f) {
+        const Vec3 off_mirror = to_centre.dot(g.mirror) * g.mirror - to_centre;
+        const float off = off_mirror.norm();
+        l = (off > radius ? Vec3(to_centre + (radius / off) * off_mirror) : Vec3(to_centre + off_mirror)).normalized();
+        const float widened = std::min(1.0f, alpha + radius / (2.0f * distance));
+        scale *= (alpha / widened) * (alpha / widened);
       }
       constexpr float kTail = 1e-3f;
       out.pixels[i] = (scale * g.lobe.brdf(g.normal, l, g.to_eye, g.view, kTail)) * d;
