@@ -4,13 +4,16 @@
 // and re-lit (the highlights moved with the light).
 #include "render/specular.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <random>
 
 #include "analysis/analysed_scene.h"
+#include "analysis/material_estimation.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
 #include "relight/render_rig.h"
@@ -136,7 +139,7 @@ std::unique_ptr<AnalysedScene> analysed(Scene scene) {
   return AnalysedScene::analyse(std::move(scene), options, Progress::silent());
 }
 
-TEST(GlossyRoom, AlbedoWithoutHighlightsAndHighlightsThatMove) {
+TEST(GlossyRoom, AlbedoWithoutHighlightsGivenOrEstimatedAndHighlightsThatMove) {
   const GlossyRoom& r = glossy_room();
   // The lamp's highlight on the floor and the ball is most of what some pixels show.
   int bright = 0;
@@ -150,16 +153,42 @@ TEST(GlossyRoom, AlbedoWithoutHighlightsAndHighlightsThatMove) {
   set_materials(matte_scene, {});
   const auto matte = analysed(std::move(matte_scene));
 
+  // The materials estimated from the matte analysis: the ball is found near
+  // its roughness and specular, nothing matte is called glossy. The floor's
+  // sheen (the bright walls mirrored, broad and faint on a checker) is left
+  // matte, and the albedo with it: 5 dB below the materials given
+  // (docs/benchmarks.md, "Materials from the photo").
+  std::map<std::string, Gloss> found;
+  for (const MaterialEstimate& m :
+       estimate_materials(matte->scene(), matte->rays(), matte->gbuffer(), matte->analysis(), {}, Progress::silent())) {
+    std::printf("[ figures  ] glossy room's %s: %s, a highlight explains %.1f %%\n", m.object.c_str(),
+                m.gloss ? fmt::format("roughness {:.2f} specular {:.2f}", m.gloss->roughness, m.gloss->specular).c_str()
+                        : "matte",
+                100.0f * m.explained);
+    if (m.gloss) found[m.object] = *m.gloss;
+  }
+  EXPECT_TRUE(found.contains("ball"));
+  for (const auto& [name, gloss] : found) {
+    const auto truth = kRoomMaterials.find(name);
+    ASSERT_NE(truth, kRoomMaterials.end()) << name << " is matte";
+    EXPECT_NEAR(gloss.roughness, truth->second.roughness, 0.1f) << name;
+    EXPECT_NEAR(gloss.specular, truth->second.specular, 0.15f) << name;
+  }
+  Scene estimated_scene = r.scene;
+  set_materials(estimated_scene, found);
+  const auto estimated = analysed(std::move(estimated_scene));
+
   const auto albedo_db = [&](const AnalysedScene& a) {
     return psnr(clip01(a.analysis().albedo.albedo_coverage), clip01(r.albedo_gt));
   };
-  const double glossy_db = albedo_db(*glossy), matte_db = albedo_db(*matte);
-  std::printf("[ figures  ] glossy room albedo PSNR: gloss known %.2f dB, taken as matte %.2f dB\n", glossy_db,
-              matte_db);
+  const double glossy_db = albedo_db(*glossy), matte_db = albedo_db(*matte), estimated_db = albedo_db(*estimated);
+  std::printf("[ figures  ] glossy room albedo PSNR: gloss known %.2f dB, estimated %.2f dB, taken as matte %.2f dB\n",
+              glossy_db, estimated_db, matte_db);
   EXPECT_FALSE(glossy->analysis().specular.pixels.empty());
   EXPECT_TRUE(matte->analysis().specular.pixels.empty());
   EXPECT_GE(glossy_db, matte_db + 2.0);
   EXPECT_GE(glossy_db, 27.0);
+  EXPECT_GE(estimated_db, matte_db + 0.2);
 
   const Rig evening = example::evening_rig();
   const auto relit_db = [&](const AnalysedScene& a) {
@@ -171,6 +200,50 @@ TEST(GlossyRoom, AlbedoWithoutHighlightsAndHighlightsThatMove) {
               glossy_relit, matte_relit);
   EXPECT_GE(glossy_relit, matte_relit + 2.0);
   EXPECT_GE(glossy_relit, 30.0);
+}
+
+// A highlight's differences scaled among a texture's steps and noise: the
+// robust fit finds the scale and how much it explains; differences that
+// follow no highlight, or a highlight a few pixels of noise predict, it
+// finds explain next to nothing.
+TEST(FitHighlight, FindsAScaledHighlightAmongTextureStepsAndNothingInUnrelatedOnes) {
+  std::mt19937 rng(3);
+  std::normal_distribution<float> highlight(0.0f, 0.05f), noise(0.0f, 0.01f);
+  std::bernoulli_distribution step(0.1);
+  std::vector<float> dx(4000), texture(4000), along(4000), tiny(4000, 0.0f);
+  for (size_t i = 0; i < dx.size(); ++i) {
+    dx[i] = highlight(rng);
+    texture[i] = noise(rng) + (step(rng) ? (i % 2 ? 0.3f : -0.3f) : 0.0f);
+    along[i] = 0.7f * dx[i] + texture[i];
+  }
+  tiny[17] = 1e-5f;
+  const HighlightFit found = fit_highlight(dx, along, 2.0f), unrelated = fit_highlight(dx, texture, 2.0f),
+                     noise_only = fit_highlight(tiny, texture, 2.0f);
+  std::printf("[ figures  ] scale 0.7: found %.3f explaining %.1f %%; unrelated %.1f %%; noise only %.2f %%\n",
+              found.scale, 100.0f * found.explained, 100.0f * unrelated.explained, 100.0f * noise_only.explained);
+  EXPECT_NEAR(found.scale, 0.7f, 0.05f);
+  EXPECT_GT(found.explained, 0.2f);
+  EXPECT_LT(unrelated.explained, 0.01f);
+  EXPECT_LE(noise_only.scale, 2.0f);
+  EXPECT_LT(noise_only.explained, 0.001f);
+}
+
+// The room photographed matte: its materials estimated from the photo leave
+// every object matte.
+TEST(MaterialEstimation, LeavesAMattePhotosSurfacesMatte) {
+  Scene scene = example::room_scene(160, 120);
+  const RayScene rays(scene.mesh);
+  const GBuffer gbuffer(scene.camera, rays, 16, 7, "room");
+  scene.photo = glossy_photo(scene, rays, gbuffer, scene.lights, 1.0f);
+  const auto matte = analysed(std::move(scene));
+  const std::vector<MaterialEstimate> estimates =
+      estimate_materials(matte->scene(), matte->rays(), matte->gbuffer(), matte->analysis(), {}, Progress::silent());
+  EXPECT_EQ(estimates.size(), 6u);  // the room's objects, each shown by over 100 pixels
+  for (const MaterialEstimate& m : estimates) {
+    std::printf("[ figures  ] matte room's %s: a highlight explains %.1f %%\n", m.object.c_str(), 100.0f * m.explained);
+    EXPECT_FALSE(m.gloss) << m.object;
+    EXPECT_LT(m.explained, 0.5f * kMinExplained) << m.object;
+  }
 }
 
 // The highlights a moving light makes (no ray of their own: from its direct
@@ -243,14 +316,17 @@ class GlossyScene : public ::testing::TestWithParam<const char*> {};
 
 std::filesystem::path glossy_data() { return std::filesystem::path(RELIGHT_SOURCE_DIR) / "tests" / "data" / "glossy"; }
 
-// The analysis of a scene folder at the defaults, and its albedo's PSNR.
-std::unique_ptr<AnalysedScene> analysed_folder(const std::filesystem::path& folder, double& albedo_db) {
-  auto a = AnalysedScene::analyse(load_scene(folder / "scene.json"), AnalysisOptions{}, Progress::silent());
+// The analysis of a scene folder's scene at the defaults, and its albedo's PSNR.
+std::unique_ptr<AnalysedScene> analysed_folder(const std::filesystem::path& folder, double& albedo_db, Scene scene) {
+  auto a = AnalysedScene::analyse(std::move(scene), AnalysisOptions{}, Progress::silent());
   const Image mask = read_image(folder / "mask.exr");
   std::vector<float> weight(mask.size());
   for (size_t i = 0; i < weight.size(); ++i) weight[i] = mask.pixels[i].x() > 0.99f;
   albedo_db = psnr(clip01(a->analysis().albedo.albedo_coverage), clip01(read_image(folder / "albedo_gt.exr")), &weight);
   return a;
+}
+std::unique_ptr<AnalysedScene> analysed_folder(const std::filesystem::path& folder, double& albedo_db) {
+  return analysed_folder(folder, albedo_db, load_scene(folder / "scene.json"));
 }
 
 TEST_P(GlossyScene, AlbedoNearTheMatteTwinsAndRigsRelit) {
@@ -268,6 +344,32 @@ TEST_P(GlossyScene, AlbedoNearTheMatteTwinsAndRigsRelit) {
     std::printf("[ figures  ] glossy %s rig %s re-lit %.2f dB\n", name.c_str(), rig.path().stem().c_str(), db);
     EXPECT_GE(db, 34.0) << rig.path();
   }
+}
+
+// The materials estimated from the photo rather than given (#23: within
+// 1 dB of the given ones' albedo): the scene analysed matte, its materials
+// estimated (as `relight materials` does), then analysed with them.
+TEST_P(GlossyScene, AlbedoWithEstimatedMaterialsNearTheGivenOnes) {
+  const std::filesystem::path folder = glossy_data() / ("glossy_" + std::string(GetParam()));
+  double given_db = 0.0, matte_db = 0.0, estimated_db = 0.0;
+  analysed_folder(folder, given_db);
+  Scene scene = load_scene(folder / "scene.json");
+  set_materials(scene, {});
+  const auto matte = analysed_folder(folder, matte_db, Scene(scene));
+  std::map<std::string, Gloss> found;
+  for (const MaterialEstimate& m :
+       estimate_materials(matte->scene(), matte->rays(), matte->gbuffer(), matte->analysis(), {}, Progress::silent()))
+    if (m.gloss) {
+      std::printf("[ figures  ] glossy %s: %s estimated roughness %.2f specular %.2f (explains %.1f %%)\n", GetParam(),
+                  m.object.c_str(), m.gloss->roughness, m.gloss->specular, 100.0f * m.explained);
+      found[m.object] = *m.gloss;
+    }
+  set_materials(scene, found);
+  analysed_folder(folder, estimated_db, std::move(scene));
+  std::printf("[ figures  ] glossy %s albedo: materials given %.2f dB, estimated %.2f dB, none %.2f dB\n", GetParam(),
+              given_db, estimated_db, matte_db);
+  EXPECT_FALSE(found.empty());
+  EXPECT_GE(estimated_db, given_db - 1.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Cycles, GlossyScene, ::testing::Values("studio", "bookcase"));

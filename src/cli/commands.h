@@ -37,6 +37,7 @@ void add_fit_command(CLI::App& app, Action& action);
 void add_mesh_command(CLI::App& app, Action& action);
 void add_camera_from_fspy_command(CLI::App& app, Action& action);
 void add_register_command(CLI::App& app, Action& action);
+void add_materials_command(CLI::App& app, Action& action);
 void add_hdr_merge_command(CLI::App& app, Action& action);
 void add_probe_from_photo_command(CLI::App& app, Action& action);
 void add_farm_command(CLI::App& app, Action& action);

@@ -156,12 +156,13 @@ int run(std::span<const std::string> args) {
   add_mesh_command(app, action);
   add_camera_from_fspy_command(app, action);
   add_register_command(app, action);
+  add_materials_command(app, action);
   add_hdr_merge_command(app, action);
   add_probe_from_photo_command(app, action);
   add_farm_command(app, action);
   bool force = false;
   for (const char* writer : {"analyze", "render", "rig", "preview", "fit", "mesh", "camera-from-fspy", "register",
-                             "hdr-merge", "probe-from-photo"})
+                             "materials", "hdr-merge", "probe-from-photo"})
     app.get_subcommand(writer)->add_flag(
         "--force", force,
         "replace an output file that is read-only (keeping its mode); analyze: also write into a folder holding "

@@ -15,6 +15,8 @@
 #   glossy_bookcase  bookcase; floor (floor_tiles) roughness 0.3, ball_blue (rubber_blue) 0.2
 #   matte_studio     the public studio, unchanged
 #   matte_bookcase   the public bookcase, unchanged
+#   glossy_studio_b  studio; ball (ball_paint) roughness 0.35 specular 0.8, stool (stool_wood) 0.15
+#   glossy_outdoor   outdoor; the ten column caps (column_cap) roughness 0.25 specular 0.6
 # Glossy surfaces: specular 0.5, distribution GGX (single scattering; Blender
 # 3.4's default, set explicitly). For the glossy scenes the script then adds
 # "materials" {OBJECT: {roughness, specular}} to OUT/scene.json (keys: the
@@ -41,6 +43,11 @@ import bpy
 GLOSSY = {
     'glossy_studio': ('studio', {'floor': ('concrete', 0.3, 0.5), 'ball': ('ball_paint', 0.2, 0.5)}),
     'glossy_bookcase': ('bookcase', {'floor': ('floor_tiles', 0.3, 0.5), 'ball_blue': ('rubber_blue', 0.2, 0.5)}),
+    # Not committed (docs/benchmarks.md, "Materials from the photo", measures on them): other
+    # objects, roughnesses and speculars; the outdoor caps share one material.
+    'glossy_studio_b': ('studio', {'ball': ('ball_paint', 0.35, 0.8), 'stool': ('stool_wood', 0.15, 0.5)}),
+    'glossy_outdoor': ('outdoor', {'cap_%s_%d' % (row, i): ('column_cap', 0.25, 0.6)
+                                   for row in 'sn' for i in range(5)}),
 }
 MATTE = {'matte_studio': 'studio', 'matte_bookcase': 'bookcase'}
 
@@ -59,10 +66,11 @@ def glossy_scene(name):
     def build():
         gen['add_light'] = add_light_glossy_visible   # main() looks add_light up at call time
         S = gen['SCENES'][public]()
-        for obj, (mat, rough, spec) in surfaces.items():
+        for mat, rough, spec in sorted(set(surfaces.values())):
             m = bpy.data.materials[mat]
             users = [o.name for o in gen['GEOM'] if m.name in [s.material.name for s in o.material_slots if s.material]]
-            assert users == [obj], 'material %s is on %s, expected only %s' % (mat, users, obj)
+            listed = sorted(o for o, (om, _, _) in surfaces.items() if om == mat)
+            assert sorted(users) == listed, 'material %s is on %s, expected only %s' % (mat, users, listed)
             gen['make_glossy'](m, rough, spec)
             p = [n for n in m.node_tree.nodes if n.type == 'BSDF_PRINCIPLED'][0]
             p.distribution = 'GGX'   # single-scattering GGX (already Blender 3.4's default)

@@ -1,0 +1,242 @@
+#include "analysis/material_estimation.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "analysis/strategy.h"
+#include "render/specular.h"
+
+namespace relight {
+
+namespace {
+
+// Huber's threshold in robust standard deviations (95 % efficiency on
+// Gaussian noise).
+constexpr float kHuber = 1.345f;
+// The strength a fitted highlight may have, against the one rendered at
+// Principled's default specular (0.5): twice it is specular 1, all a
+// dielectric can reflect.
+constexpr float kDefaultSpecular = 0.5f;
+// Below this specular a fitted highlight is too faint to matter: left matte.
+constexpr float kMinSpecular = 0.05f;
+// The pixel offsets the gradients are taken over: a sharp highlight shows
+// at one pixel, a broad one over several.
+constexpr int kSteps[] = {1, 2, 4};
+
+float median_of(std::vector<float> v) {
+  if (v.empty()) return 0.0f;
+  const auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+// A robust standard deviation: 1.4826 x the median absolute value.
+float robust_sigma(const std::vector<float>& e) {
+  std::vector<float> a(e.size());
+  std::transform(e.begin(), e.end(), a.begin(), [](float x) { return std::abs(x); });
+  return 1.4826f * median_of(std::move(a));
+}
+
+double huber_loss(const std::vector<float>& e, float threshold) {
+  double sum = 0.0;
+  for (const float x : e) {
+    const double a = std::abs(x);
+    sum += a < threshold ? 0.5 * a * a : threshold * (a - 0.5 * threshold);
+  }
+  return sum;
+}
+
+// What each whole pixel of the view shows, and how its photo compares with
+// its illumination and a highlight.
+struct ViewPixels {
+  std::vector<int32_t> object;  // per pixel: the object shown whole and unclipped, or -1
+  std::vector<float> shading;   // photo / illumination (mean of the channels)
+};
+
+// The object every sample of pixel (x, y) sees where one does, all of it
+// matte as the scene has it (a finely divided object's pixel sees several
+// of its triangles).
+std::optional<uint32_t> matte_object_seen_whole(const Scene& scene, const GBuffer& gbuffer, int x, int y,
+                                                std::vector<GBufferSample>& samples) {
+  if (const std::optional<uint32_t> t = gbuffer.single_triangle(x, y))
+    return scene.gloss.at(*t) ? std::nullopt : std::optional(scene.mesh.triangle_objects[*t]);
+  gbuffer.pixel_samples(x, y, samples);
+  if (!samples[0].hit) return std::nullopt;
+  const uint32_t object = scene.mesh.triangle_objects[samples[0].surface.prim];
+  for (const GBufferSample& s : samples)
+    if (!s.hit || scene.mesh.triangle_objects[s.surface.prim] != object || scene.gloss.at(s.surface.prim))
+      return std::nullopt;
+  return object;
+}
+
+ViewPixels view_pixels(const Scene& scene, const GBuffer& gbuffer, const Analysis& analysis, const Image& photo) {
+  const int w = gbuffer.width(), h = gbuffer.height();
+  ViewPixels v;
+  v.object.assign(size_t(w) * h, -1);
+  v.shading.assign(size_t(w) * h, 0.0f);
+  const Image& illumination = analysis.illumination.surface;
+  std::vector<GBufferSample> samples(size_t(gbuffer.samples_per_pixel()));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      if (!scene.photo_clipped.empty() && scene.photo_clipped[i]) continue;
+      const std::optional<uint32_t> object = matte_object_seen_whole(scene, gbuffer, x, y, samples);
+      if (!object) continue;
+      const Vec3& e = illumination.pixels[i];
+      if (e.minCoeff() <= 1e-4f * std::max(e.maxCoeff(), 1e-12f) || e.maxCoeff() <= 0.0f) continue;
+      v.object[i] = int32_t(*object);
+      v.shading[i] = photo.pixels[i].cwiseQuotient(e).mean();
+    }
+  return v;
+}
+
+// Per object: the differences of `value` between pixels kSteps apart along
+// rows and columns, both showing the object.
+std::vector<std::vector<float>> differences(const ViewPixels& view, const std::vector<float>& value, int w, int h,
+                                            size_t objects) {
+  std::vector<std::vector<float>> d(objects);
+  for (const int step : kSteps)
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        const int32_t o = view.object[i];
+        if (o < 0) continue;
+        if (x + step < w && view.object[i + step] == o) d[o].push_back(value[i + step] - value[i]);
+        if (y + step < h && view.object[i + size_t(step) * w] == o)
+          d[o].push_back(value[i + size_t(step) * w] - value[i]);
+      }
+  return d;
+}
+
+// The highlights every object in `glossy` would show at `roughness`, at the
+// default specular: of the scene's lights and environment. The surfaces the
+// gloss mirrors are left out: predicted from the photo, their pattern
+// follows the bounce light and with it the illumination's own errors, which
+// then pass for a highlight (docs/benchmarks.md, "Materials from the photo").
+Image predicted_highlights(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Lighting& lighting,
+                           const std::vector<std::string>& glossy, float roughness,
+                           const MaterialEstimationOptions& options, Progress& progress) {
+  std::map<std::string, Gloss> materials;
+  for (const std::string& name : glossy) materials[name] = Gloss{roughness, kDefaultSpecular};
+  const SurfaceGloss gloss(materials, scene.mesh);
+  const Integrator integrator(rays, lighting, nullptr);
+  const ReflectedRadiance nothing_mirrored = [](const SurfacePoint&, Rng&) -> Vec3 { return Vec3::Zero(); };
+  const SpecularReflection specular(integrator, gloss, nothing_mirrored);
+  return render_specular(gbuffer, scene.camera, specular, options.paths_per_pixel, options.seed, progress,
+                         fmt::format("highlights at roughness {:.2f}", roughness));
+}
+
+// The photo as the analysis divided it: in the probes' units, less the
+// highlights of the surfaces given glossy.
+Image photo_as_divided(const Scene& scene, const Analysis& analysis) {
+  Image photo = scene.photo;
+  const Vec3 exposure = analysis.photo_exposure.cwiseInverse();
+  for (size_t i = 0; i < photo.size(); ++i) {
+    photo.pixels[i] = photo.pixels[i].cwiseProduct(exposure);
+    if (!analysis.specular.pixels.empty())
+      photo.pixels[i] = (photo.pixels[i] - analysis.coverage[i] * analysis.specular.pixels[i]).cwiseMax(0.0f);
+  }
+  return photo;
+}
+
+}  // namespace
+
+HighlightFit fit_highlight(const std::vector<float>& dx, const std::vector<float>& dy, float max_scale) {
+  double xx = 0.0, xy = 0.0;
+  for (size_t i = 0; i < dx.size(); ++i) xx += double(dx[i]) * dx[i], xy += double(dx[i]) * dy[i];
+  if (xx <= 0.0) return {};
+  // Iteratively reweighted least squares: the pairs across the object's
+  // texture (and the photo's noise) are the outliers of a highlight's shape.
+  double k = xy / xx;
+  std::vector<float> e(dx.size());
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    for (size_t i = 0; i < e.size(); ++i) e[i] = dy[i] - float(k) * dx[i];
+    const float threshold = kHuber * std::max(robust_sigma(e), 1e-12f);
+    double wxx = 0.0, wxy = 0.0;
+    for (size_t i = 0; i < e.size(); ++i) {
+      const double weight = std::min(1.0, threshold / std::max(std::abs(double(e[i])), 1e-30));
+      wxx += weight * dx[i] * dx[i], wxy += weight * dx[i] * dy[i];
+    }
+    const double next = wxy / wxx;
+    const bool settled = std::abs(next - k) <= 1e-5 * std::max(1.0, std::abs(k));
+    k = next;
+    if (settled) break;
+  }
+  // A highlight a few pixels of noise predict fits any scale: none beyond
+  // what the surface could reflect.
+  k = std::clamp(k, 0.0, double(max_scale));
+  for (size_t i = 0; i < e.size(); ++i) e[i] = dy[i] - float(k) * dx[i];
+  const float threshold = kHuber * std::max(robust_sigma(dy), 1e-12f);
+  const double before = huber_loss(dy, threshold);
+  if (before <= 0.0) return {float(k), 0.0f};
+  return {float(k), float(1.0 - huber_loss(e, threshold) / before)};
+}
+
+std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
+                                                 const Analysis& analysis, const MaterialEstimationOptions& options,
+                                                 Progress& progress) {
+  const int w = gbuffer.width(), h = gbuffer.height();
+  if (!scene.mesh.has_objects()) return {};
+  const size_t objects = scene.mesh.objects.size();
+  const Image photo = photo_as_divided(scene, analysis);
+  const ViewPixels view = view_pixels(scene, gbuffer, analysis, photo);
+  std::vector<size_t> pixels(objects, 0);
+  for (const int32_t o : view.object)
+    if (o >= 0) ++pixels[o];
+  std::vector<MaterialEstimate> estimates;
+  std::vector<std::string> candidates;
+  std::vector<int32_t> estimate_of(objects, -1);
+  for (size_t o = 0; o < objects; ++o) {
+    if (pixels[o] < options.min_pixels) continue;
+    estimate_of[o] = int32_t(estimates.size());
+    estimates.push_back({scene.mesh.objects[o], pixels[o], std::nullopt, 0.0f, ""});
+    candidates.push_back(scene.mesh.objects[o]);
+  }
+  if (candidates.empty()) return estimates;
+
+  const std::vector<std::vector<float>> shading = differences(view, view.shading, w, h, objects);
+  const Lighting lighting = strategy_lighting(scene, rays, analysis.options.strategy);
+  // Per object: the best fit so far and its roughness.
+  std::vector<HighlightFit> best(estimates.size());
+  std::vector<float> best_roughness(estimates.size(), 0.0f);
+  std::vector<uint8_t> any_highlight(estimates.size(), 0);
+  std::vector<float> predicted(size_t(w) * h);
+  for (const float roughness : kRoughnessGrid) {
+    const Image highlights =
+        predicted_highlights(scene, rays, gbuffer, lighting, candidates, roughness, options, progress);
+    for (size_t i = 0; i < predicted.size(); ++i) {
+      const Vec3& e = analysis.illumination.surface.pixels[i];
+      predicted[i] = view.object[i] < 0 ? 0.0f : highlights.pixels[i].cwiseQuotient(e).mean();
+    }
+    const std::vector<std::vector<float>> highlight = differences(view, predicted, w, h, objects);
+    for (size_t o = 0; o < objects; ++o) {
+      const int32_t k = estimate_of[o];
+      if (k < 0) continue;
+      const HighlightFit fit = fit_highlight(highlight[o], shading[o], 1.0f / kDefaultSpecular);
+      if (std::any_of(highlight[o].begin(), highlight[o].end(), [](float d) { return d != 0.0f; }))
+        any_highlight[k] = 1;
+      if (fit.scale > 0.0f && fit.explained > best[k].explained) best[k] = fit, best_roughness[k] = roughness;
+    }
+  }
+  for (size_t k = 0; k < estimates.size(); ++k) {
+    MaterialEstimate& m = estimates[k];
+    m.explained = best[k].explained;
+    const float specular = kDefaultSpecular * best[k].scale;
+    if (!any_highlight[k])
+      m.reason = "no light or bright sky is mirrored towards the camera on it";
+    else if (best[k].explained < kMinExplained)
+      m.reason = fmt::format("a highlight explains {:.1f} % of its shading's fine variation (at least {:.0f} % needed)",
+                             100.0f * best[k].explained, 100.0f * kMinExplained);
+    else if (specular < kMinSpecular)
+      m.reason = fmt::format("its highlights are faint (specular {:.3f}, under {:.2f})", specular, kMinSpecular);
+    else
+      m.gloss = Gloss{best_roughness[k], specular};
+  }
+  return estimates;
+}
+
+}  // namespace relight

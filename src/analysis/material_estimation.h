@@ -1,0 +1,69 @@
+// Materials estimated from the photo: which of the geometry's objects shine,
+// with what roughness and specular (scene.json's `materials`), found where
+// the highlights of the scene's lights and environment would fall on them
+// (docs/algorithms.md section 13, "Materials from the photo").
+//
+// For each object the photo shows, the highlights are predicted at a grid
+// of roughnesses and the one whose shape best explains the fine variation
+// of photo / illumination across the object (its gradients over 1, 2 and 4
+// pixels, a robust fit) is kept, scaled to the photo up to the most a
+// dielectric reflects (specular 1: a metal's or a tinted coat's highlights
+// are not modelled). It refuses to guess — the object stays matte — where
+// no predicted highlight explains at least kMinExplained of that variation.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/analyze.h"
+#include "core/progress.h"
+#include "render/gbuffer.h"
+#include "render/ray_scene.h"
+#include "scene/scene.h"
+
+namespace relight {
+
+// The share of an object's fine variation (the robust loss of its photo /
+// illumination gradients) a highlight must explain for the object to be
+// called glossy: texture, noise and the illumination's own errors explain
+// none of a highlight's shape, so a matte object's best highlight explains
+// well under 1 % (docs/benchmarks.md, "Materials from the photo").
+inline constexpr float kMinExplained = 0.1f;
+
+// The roughnesses tried (Principled's, alpha = roughness squared).
+inline constexpr float kRoughnessGrid[] = {0.05f, 0.1f, 0.15f, 0.2f, 0.3f, 0.4f, 0.55f, 0.7f};
+
+struct MaterialEstimate {
+  std::string object;          // the geometry's object name
+  size_t pixels = 0;           // the pixels that show it whole
+  std::optional<Gloss> gloss;  // found; none: left matte (`reason` says why)
+  float explained = 0.0f;      // the share of its fine variation the best highlight explains
+  std::string reason;
+};
+
+struct MaterialEstimationOptions {
+  int paths_per_pixel = 64;
+  uint64_t seed = 1;
+  // Objects shown whole by fewer pixels are left as they are.
+  size_t min_pixels = 100;
+};
+
+// Estimates the objects of `scene` that `scene.materials` leaves matte, from
+// the photo and `analysis` (the scene analysed with them matte, through the
+// camera `gbuffer` was made with). One estimate per object the photo shows
+// by at least min_pixels whole pixels, in the geometry's order.
+std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
+                                                 const Analysis& analysis, const MaterialEstimationOptions& options,
+                                                 Progress& progress);
+
+// How far `dy` follows k x `dx` (one pair of pixels per entry): the robust
+// (Huber) slope through the origin, held to [0, max_scale], and the share
+// of dy's robust loss it explains (0: none; 1: all). Exposed for the tests.
+struct HighlightFit {
+  float scale = 0.0f;
+  float explained = 0.0f;
+};
+HighlightFit fit_highlight(const std::vector<float>& dx, const std::vector<float>& dy, float max_scale);
+
+}  // namespace relight
