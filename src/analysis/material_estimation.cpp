@@ -1,7 +1,6 @@
 #include "analysis/material_estimation.h"
 
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>

@@ -2,6 +2,7 @@
 // as scene.json's `materials` (src/analysis/material_estimation.h).
 #include <cstdio>
 #include <filesystem>
+#include <map>
 
 #include "analysis/material_estimation.h"
 #include "analysis/strategy.h"
