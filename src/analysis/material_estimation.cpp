@@ -16,8 +16,8 @@ namespace {
 // Huber's threshold in robust standard deviations (95 % efficiency on
 // Gaussian noise).
 constexpr float kHuber = 1.345f;
-// The strength a fitted highlight may have, against the one rendered at
-// Principled's default specular (0.5): twice it is specular 1, all a
+// The specular the highlights are predicted at (Principled's default): a
+// fitted scale k is specular 0.5 k, and k = 2 (specular 1) all a
 // dielectric can reflect.
 constexpr float kDefaultSpecular = 0.5f;
 // Below this specular a fitted highlight is too faint to matter: left matte.
@@ -50,7 +50,7 @@ double huber_loss(const std::vector<float>& e, float threshold) {
 }
 
 // What each whole pixel of the view shows, and how its photo compares with
-// its illumination and a highlight.
+// its illumination.
 struct ViewPixels {
   std::vector<int32_t> object;  // per pixel: the object shown whole and unclipped, or -1
   std::vector<float> shading;   // photo / illumination (mean of the channels)
