@@ -474,18 +474,20 @@ TEST(Session, GlossySurfacesShowTheHighlightsWhileALightMovesAndConvergeToTheOff
   // The lamp dragged 60 cm along the wall: the frame that first shows it
   // there, against the frame it converges to.
   const NewIllumination renderer(r);
-  const auto highlights_of = [&](const Rig& lit, SpecularParts parts) {
+  const auto lit_by = [](const Rig& lit) {
     Lighting lighting;
     lighting.lights = lit.lights;
-    return renderer.highlights(r.gbuffer(), r.scene().camera, lighting, options.final_render, Progress::silent(),
-                               parts);
+    return lighting;
   };
-  const Image own_highlights_before = highlights_of(rig, SpecularParts::lights);
+  const Image own_highlights_before =
+      renderer.highlight_parts(r.gbuffer(), r.scene().camera, lit_by(rig), options.final_render, Progress::silent())
+          .lights;
   rig.lights[0].position += Vec3(-0.6f, 0.0f, 0.0f);
   const Frame moved = session.wait_for_edit(session.set_light(0, rig.lights[0]));
   ASSERT_EQ(moved.quality, FrameQuality::interactive);
   const Frame converged = session.wait_until_converged();
-  const Image highlights_after = highlights_of(rig, SpecularParts::all);
+  const Image highlights_after =
+      renderer.highlights(r.gbuffer(), r.scene().camera, lit_by(rig), options.final_render, Progress::silent());
   ASSERT_FALSE(highlights_after.empty());
   const Image left = difference(*converged.image, *moved.image);
   const std::vector<float>& coverage = r.analysis().coverage;

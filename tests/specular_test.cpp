@@ -274,8 +274,9 @@ MovingAgainstRefined moving_against_refined(const Light& light) {
   const ReflectedRadiance unused = [](const SurfacePoint&, Rng&) -> Vec3 { return Vec3::Zero(); };
   const int paths = light.radius > 0.0f || light.type == LightType::area ? 1024 : 4;
   const Image refined =
-      render_specular(gbuffer, scene.camera, SpecularReflection(integrator, scene.gloss, unused, SpecularParts::lights),
-                      paths, 5, Progress::silent());
+      render_specular_parts(gbuffer, scene.camera, SpecularReflection(integrator, scene.gloss, unused), paths, 5,
+                            Progress::silent())
+          .lights;
   double along = 0.0, norm = 0.0;
   for (size_t i = 0; i < refined.size(); ++i) {
     along += moving.pixels[i].cast<double>().dot(refined.pixels[i].cast<double>());

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 
+#include "analysis/probe_exposure.h"
 #include "analysis/strategy.h"
 #include "render/specular.h"
 
@@ -133,12 +134,10 @@ Image predicted_highlights(const Scene& scene, const RayScene& rays, const GBuff
 // highlights of the surfaces given glossy.
 Image photo_as_divided(const Scene& scene, const Analysis& analysis) {
   Image photo = scene.photo;
-  const Vec3 exposure = analysis.photo_exposure.cwiseInverse();
-  for (size_t i = 0; i < photo.size(); ++i) {
-    photo.pixels[i] = photo.pixels[i].cwiseProduct(exposure);
-    if (!analysis.specular.pixels.empty())
+  apply_exposure(photo, analysis.photo_exposure.cwiseInverse());
+  if (!analysis.specular.pixels.empty())
+    for (size_t i = 0; i < photo.size(); ++i)
       photo.pixels[i] = (photo.pixels[i] - analysis.coverage[i] * analysis.specular.pixels[i]).cwiseMax(0.0f);
-  }
   return photo;
 }
 

@@ -111,17 +111,32 @@ Image NewIllumination::render_background(const GBuffer& gbuffer, const Camera& c
   return relight::render_background(gbuffer, camera, Integrator(analysed_.rays(), lighting, &bounce_albedo_));
 }
 
-Image NewIllumination::highlights(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
-                                  const RenderOptions& options, Progress& progress, SpecularParts parts) const {
-  const SurfaceGloss& gloss = analysed_.scene().gloss;
-  if (!sees_gloss(gbuffer, gloss)) return Image();
+template <class Render>
+auto NewIllumination::render_highlights(const Lighting& lighting, const RenderOptions& options,
+                                        const Render& render) const {
   const Integrator integrator(analysed_.rays(), lighting, &bounce_albedo_, integrator_options(options));
   const ReflectedRadiance surfaces = [&](const SurfacePoint& hit, Rng& rng) -> Vec3 {
     return bounce_albedo_.at(hit).cwiseProduct(integrator.illumination(hit, rng));
   };
-  const SpecularReflection specular(integrator, gloss, surfaces, parts);
   const IlluminationOptions settings = illumination_options(options);
-  return render_specular(gbuffer, camera, specular, settings.paths_per_pixel, settings.seed, progress);
+  return render(SpecularReflection(integrator, analysed_.scene().gloss, surfaces), settings.paths_per_pixel,
+                settings.seed);
+}
+
+Image NewIllumination::highlights(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
+                                  const RenderOptions& options, Progress& progress) const {
+  if (!sees_gloss(gbuffer, analysed_.scene().gloss)) return Image();
+  return render_highlights(lighting, options, [&](const SpecularReflection& specular, int paths, uint64_t seed) {
+    return render_specular(gbuffer, camera, specular, paths, seed, progress);
+  });
+}
+
+SpecularImages NewIllumination::highlight_parts(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
+                                                const RenderOptions& options, Progress& progress) const {
+  if (!sees_gloss(gbuffer, analysed_.scene().gloss)) return {};
+  return render_highlights(lighting, options, [&](const SpecularReflection& specular, int paths, uint64_t seed) {
+    return render_specular_parts(gbuffer, camera, specular, paths, seed, progress);
+  });
 }
 
 void add_highlights(Image& relit, const std::vector<float>& coverage, const Image& highlights) {

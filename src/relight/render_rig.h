@@ -90,12 +90,21 @@ class NewIllumination {
   Image render_background(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting) const;
   // The highlights `lighting` makes on the glossy surfaces the pixels of
   // `gbuffer` see (render/specular.h), a reflected ray meeting a surface
-  // taking the recovered albedo times its light (or the one part `parts`
-  // names); an empty image where no pixel sees a glossy surface.
+  // taking the recovered albedo times its light; an empty image where no
+  // pixel sees a glossy surface.
   Image highlights(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting, const RenderOptions& options,
-                   Progress& progress, SpecularParts parts = SpecularParts::all) const;
+                   Progress& progress) const;
+  // The same in its two parts (SpecularParts); both empty where no pixel
+  // sees a glossy surface.
+  SpecularImages highlight_parts(const GBuffer& gbuffer, const Camera& camera, const Lighting& lighting,
+                                 const RenderOptions& options, Progress& progress) const;
 
  private:
+  // render(specular, paths_per_pixel, seed) with the highlights of
+  // `lighting` as highlights() takes them.
+  template <class Render>
+  auto render_highlights(const Lighting& lighting, const RenderOptions& options, const Render& render) const;
+
   const AnalysedScene& analysed_;
   PhotoAlbedo bounce_albedo_;
 };

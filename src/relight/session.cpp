@@ -501,10 +501,10 @@ void RelightSession::run_job(Job& job) {
       case Kind::highlight: {
         Lighting lighting;
         lighting.lights = {job.light};
-        job.result = illumination_.highlights(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress,
-                                              SpecularParts::lights);
-        job.highlight = illumination_.highlights(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress,
-                                                 SpecularParts::reflected);
+        SpecularImages parts =
+            illumination_.highlight_parts(view.gbuffer(), view.camera(), lighting, bounce_options, job.progress);
+        job.result = std::move(parts.lights);
+        job.highlight = std::move(parts.reflected);
         job.done = true;
         break;
       }

@@ -47,21 +47,27 @@ class EstimateSum {
   int n_ = 0;
 };
 
-// The mean of max(paths_per_pixel, sub-samples) estimates spread evenly over
-// the pixel's sub-samples, over those that see geometry:
-// estimate(surface, path, paths, rng) gives one.
-template <class Estimate>
-PixelEstimate estimate_pixel(const GBuffer& g, int x, int y, int paths_per_pixel, Rng& rng, const Estimate& estimate) {
+// max(paths_per_pixel, sub-samples) estimates spread evenly over the
+// pixel's sub-samples, added to a Sum over those that see geometry:
+// estimate(surface, path, paths, rng) gives one (what Sum::add takes).
+template <class Sum, class Estimate>
+Sum sum_pixel(const GBuffer& g, int x, int y, int paths_per_pixel, Rng& rng, const Estimate& estimate) {
   const int spp = g.samples_per_pixel();
   const int paths = std::max(paths_per_pixel, spp);
   thread_local std::vector<GBufferSample> samples;  // fetched once: most are recomputed when asked for
   g.pixel_samples(x, y, samples);
-  EstimateSum sum;
+  Sum sum;
   for (int i = 0; i < paths; ++i) {
     const GBufferSample s = samples[size_t(i % spp)];
     if (s.hit) sum.add(estimate(s.surface, i, paths, rng));
   }
-  return sum.estimate();
+  return sum;
+}
+
+// Their mean and its noise.
+template <class Estimate>
+PixelEstimate estimate_pixel(const GBuffer& g, int x, int y, int paths_per_pixel, Rng& rng, const Estimate& estimate) {
+  return sum_pixel<EstimateSum>(g, x, y, paths_per_pixel, rng, estimate).estimate();
 }
 
 }  // namespace relight

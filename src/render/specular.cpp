@@ -22,28 +22,57 @@ bool pixel_sees_gloss(const GBuffer& g, int x, int y, const SurfaceGloss& gloss,
                      [&](const GBufferSample& s) { return s.hit && gloss.at(s.surface.prim); });
 }
 
+// Each pixel that sees gloss: its estimates (estimate(surface, path,
+// paths, rng)) summed by a Sum, and handed to write(pixel index, sum).
+template <class Sum, class Estimate, class Write>
+void sum_glossy_pixels(const GBuffer& g, const SurfaceGloss& gloss, int paths_per_pixel, uint64_t seed,
+                       Progress& progress, const std::string& label, const Estimate& estimate, const Write& write) {
+  const int w = g.width(), h = g.height();
+  progress.begin(label, h);
+  tbb::parallel_for(0, h, [&](int y) {
+    std::vector<GBufferSample> samples;
+    for (int x = 0; x < w; ++x) {
+      if (!pixel_sees_gloss(g, x, y, gloss, samples)) continue;
+      const size_t i = size_t(y) * w + x;
+      Rng rng(seed, i, kSpecularStream);
+      write(i, sum_pixel<Sum>(g, x, y, paths_per_pixel, rng, estimate));
+    }
+    progress.advance();
+  });
+  progress.end();
+}
+
+// The two parts' estimates summed apart.
+struct PartsSum {
+  EstimateSum lights, reflected;
+  void add(const SpecularParts& s) {
+    lights.add(s.lights);
+    reflected.add(s.reflected);
+  }
+};
+
 }  // namespace
 
 SpecularReflection::SpecularReflection(const Integrator& lights, const SurfaceGloss& gloss,
-                                       const ReflectedRadiance& surfaces, SpecularParts parts)
-    : lights_(lights), gloss_(gloss), surfaces_(surfaces), parts_(parts) {}
+                                       const ReflectedRadiance& surfaces)
+    : lights_(lights), gloss_(gloss), surfaces_(surfaces) {}
 
-Vec3 SpecularReflection::radiance(const SurfacePoint& p, const Vec3& eye, Rng& rng) const {
+SpecularParts SpecularReflection::parts(const SurfacePoint& p, const Vec3& eye, Rng& rng) const {
   const Gloss* gloss = gloss_.at(p.prim);
-  if (!gloss) return Vec3::Zero();
+  if (!gloss) return {};
   const GgxLobe lobe(*gloss);
   const Vec3 v = (eye - p.position).normalized();
-  const Vec3 from_lights =
-      parts_ == SpecularParts::reflected ? Vec3::Zero() : lights_.specular_from_lights(p, lobe, v, rng);
-  if (parts_ == SpecularParts::lights) return from_lights;
+  SpecularParts s;
+  s.lights = lights_.specular_from_lights(p, lobe, v, rng);
   Vec3 l;
   float weight;
   // A reflected ray below the facet would leave through it: it brings nothing.
-  if (!lobe.sample(p.normal, v, rng.uniform2(), l, weight) || l.dot(p.geometric_normal) <= 0.0f) return from_lights;
+  if (!lobe.sample(p.normal, v, rng.uniform2(), l, weight) || l.dot(p.geometric_normal) <= 0.0f) return s;
   const RayScene& rays = lights_.rays();
   SurfacePoint hit;
-  if (rays.intersect(rays.offset_origin(p, l), l, hit)) return from_lights + weight * surfaces_(hit, rng);
-  return from_lights + weight * lights_.environment(p.position, l);
+  s.reflected = weight * (rays.intersect(rays.offset_origin(p, l), l, hit) ? surfaces_(hit, rng)
+                                                                           : lights_.environment(p.position, l));
+  return s;
 }
 
 bool sees_gloss(const GBuffer& gbuffer, const SurfaceGloss& gloss) {
@@ -57,24 +86,27 @@ bool sees_gloss(const GBuffer& gbuffer, const SurfaceGloss& gloss) {
 
 Image render_specular(const GBuffer& g, const Camera& camera, const SpecularReflection& specular, int paths_per_pixel,
                       uint64_t seed, Progress& progress, const std::string& label) {
-  const int w = g.width(), h = g.height();
-  Image image(w, h);
+  Image image(g.width(), g.height());
   if (specular.gloss().all_matte()) return image;
-  progress.begin(label, h);
-  tbb::parallel_for(0, h, [&](int y) {
-    std::vector<GBufferSample> samples;
-    for (int x = 0; x < w; ++x) {
-      if (!pixel_sees_gloss(g, x, y, specular.gloss(), samples)) continue;
-      const size_t i = size_t(y) * w + x;
-      Rng rng(seed, i, kSpecularStream);
-      image.pixels[i] = estimate_pixel(g, x, y, paths_per_pixel, rng, [&](const SurfacePoint& p, int, int, Rng& r) {
-                          return specular.radiance(p, camera.position(), r);
-                        }).mean;
-    }
-    progress.advance();
-  });
-  progress.end();
+  sum_glossy_pixels<EstimateSum>(
+      g, specular.gloss(), paths_per_pixel, seed, progress, label,
+      [&](const SurfacePoint& p, int, int, Rng& r) { return specular.radiance(p, camera.position(), r); },
+      [&](size_t i, const EstimateSum& sum) { image.pixels[i] = sum.estimate().mean; });
   return image;
+}
+
+SpecularImages render_specular_parts(const GBuffer& g, const Camera& camera, const SpecularReflection& specular,
+                                     int paths_per_pixel, uint64_t seed, Progress& progress, const std::string& label) {
+  SpecularImages images{Image(g.width(), g.height()), Image(g.width(), g.height())};
+  if (specular.gloss().all_matte()) return images;
+  sum_glossy_pixels<PartsSum>(
+      g, specular.gloss(), paths_per_pixel, seed, progress, label,
+      [&](const SurfacePoint& p, int, int, Rng& r) { return specular.parts(p, camera.position(), r); },
+      [&](size_t i, const PartsSum& sum) {
+        images.lights.pixels[i] = sum.lights.estimate().mean;
+        images.reflected.pixels[i] = sum.reflected.estimate().mean;
+      });
+  return images;
 }
 
 MovingHighlights::MovingHighlights(const PixelSurfaces& surfaces, const SurfaceGloss& gloss, const Vec3& eye) {
@@ -129,14 +161,17 @@ void MovingHighlights::render(const Light& light, const Image& direct, Image& ou
       // of its sphere nearest the mirror ray, its peak lowered as the lobe's
       // would be, widened by half the sphere's angular radius. A narrower one
       // highlights as its centre does.
-      const Vec3 to_centre = light.position - g.position;
-      const float distance = radius > 0.0f ? to_centre.norm() : 0.0f, alpha = g.lobe.alpha();
-      if (radius > alpha * distance && distance > 0.0f) {
-        const Vec3 off_mirror = to_centre.dot(g.mirror) * g.mirror - to_centre;
-        const float off = off_mirror.norm();
-        l = (off > radius ? Vec3(to_centre + (radius / off) * off_mirror) : Vec3(to_centre + off_mirror)).normalized();
-        const float widened = std::min(1.0f, alpha + radius / (2.0f * distance));
-        scale *= (alpha / widened) * (alpha / widened);
+      if (radius > 0.0f) {
+        const Vec3 to_centre = light.position - g.position;
+        const float distance = to_centre.norm(), alpha = g.lobe.alpha();
+        if (radius > alpha * distance && distance > 0.0f) {
+          const Vec3 off_mirror = to_centre.dot(g.mirror) * g.mirror - to_centre;
+          const float off = off_mirror.norm();
+          l = (off > radius ? Vec3(to_centre + (radius / off) * off_mirror) : Vec3(to_centre + off_mirror))
+                  .normalized();
+          const float widened = std::min(1.0f, alpha + radius / (2.0f * distance));
+          scale *= (alpha / widened) * (alpha / widened);
+        }
       }
       constexpr float kTail = 1e-3f;
       out.pixels[i] = (scale * g.lobe.brdf(g.normal, l, g.to_eye, g.view, kTail)) * d;

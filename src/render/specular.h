@@ -27,30 +27,34 @@ namespace relight {
 // The radiance a surface point sends back along the reflected ray that met it.
 using ReflectedRadiance = std::function<Vec3(const SurfacePoint& hit, Rng& rng)>;
 
-// What a SpecularReflection estimates: the lights' own highlights (their
-// samples through the lobe), what the lobe's traced direction brings (the
-// lit surfaces and the environment the gloss mirrors), or both.
-enum class SpecularParts { all, lights, reflected };
+// A highlight in its two parts: the lights' own (their samples through the
+// lobe), and what the lobe's traced direction brings (the lit surfaces and
+// the environment the gloss mirrors).
+struct SpecularParts {
+  Vec3 lights = Vec3::Zero(), reflected = Vec3::Zero();
+};
 
 class SpecularReflection {
  public:
   // lights: an integrator of the lighting the highlights are of (its lights
   // and environment). Holds references to all three: they must outlive it.
-  SpecularReflection(const Integrator& lights, const SurfaceGloss& gloss, const ReflectedRadiance& surfaces,
-                     SpecularParts parts = SpecularParts::all);
-  // One estimate of the radiance the gloss at p reflects towards `eye`:
-  // every light sampled once (Integrator::specular_from_lights), and one
-  // direction of the lobe traced — the environment where it leaves the
-  // scene, `surfaces` where it meets one —, or the one part `parts` names.
-  // 0 where p is matte.
-  Vec3 radiance(const SurfacePoint& p, const Vec3& eye, Rng& rng) const;
+  SpecularReflection(const Integrator& lights, const SurfaceGloss& gloss, const ReflectedRadiance& surfaces);
+  // One estimate of the radiance the gloss at p reflects towards `eye`, in
+  // its parts: every light sampled once (Integrator::specular_from_lights),
+  // and one direction of the lobe traced — the environment where it leaves
+  // the scene, `surfaces` where it meets one. 0 where p is matte.
+  SpecularParts parts(const SurfacePoint& p, const Vec3& eye, Rng& rng) const;
+  // Both parts' sum.
+  Vec3 radiance(const SurfacePoint& p, const Vec3& eye, Rng& rng) const {
+    const SpecularParts s = parts(p, eye, rng);
+    return s.lights + s.reflected;
+  }
   const SurfaceGloss& gloss() const { return gloss_; }
 
  private:
   const Integrator& lights_;
   const SurfaceGloss& gloss_;
   const ReflectedRadiance& surfaces_;
-  SpecularParts parts_;
 };
 
 // The specular radiance of every pixel: the mean, over the pixel's samples
@@ -58,6 +62,14 @@ class SpecularReflection {
 // matte samples); an image of zeros where every surface is matte.
 Image render_specular(const GBuffer& gbuffer, const Camera& camera, const SpecularReflection& specular,
                       int paths_per_pixel, uint64_t seed, Progress& progress, const std::string& label = "highlights");
+
+// The same in its two parts (SpecularReflection::parts), in one pass.
+struct SpecularImages {
+  Image lights, reflected;
+};
+SpecularImages render_specular_parts(const GBuffer& gbuffer, const Camera& camera, const SpecularReflection& specular,
+                                     int paths_per_pixel, uint64_t seed, Progress& progress,
+                                     const std::string& label = "highlights");
 
 // Whether any pixel of the G-buffer sees a glossy surface.
 bool sees_gloss(const GBuffer& gbuffer, const SurfaceGloss& gloss);
