@@ -133,6 +133,10 @@ const GlossyRoom& glossy_room() {
   return room;
 }
 
+// The estimator's highlights at a quarter of its default paths: the room's
+// are plain at 16 (the tests run under the sanitizers too).
+const MaterialEstimationOptions kQuickEstimate{.paths_per_pixel = 16};
+
 std::unique_ptr<AnalysedScene> analysed(Scene scene) {
   AnalysisOptions options;
   options.strategy = Strategy::lights;
@@ -159,8 +163,8 @@ TEST(GlossyRoom, AlbedoWithoutHighlightsGivenOrEstimatedAndHighlightsThatMove) {
   // matte, and the albedo with it: 5 dB below the materials given
   // (docs/benchmarks.md, "Materials from the photo").
   std::map<std::string, Gloss> found;
-  for (const MaterialEstimate& m :
-       estimate_materials(matte->scene(), matte->rays(), matte->gbuffer(), matte->analysis(), {}, Progress::silent())) {
+  for (const MaterialEstimate& m : estimate_materials(matte->scene(), matte->rays(), matte->gbuffer(),
+                                                      matte->analysis(), kQuickEstimate, Progress::silent())) {
     std::printf("[ figures  ] glossy room's %s: %s, a highlight explains %.1f %%\n", m.object.c_str(),
                 m.gloss ? fmt::format("roughness {:.2f} specular {:.2f}", m.gloss->roughness, m.gloss->specular).c_str()
                         : "matte",
@@ -236,8 +240,8 @@ TEST(MaterialEstimation, LeavesAMattePhotosSurfacesMatte) {
   const GBuffer gbuffer(scene.camera, rays, 16, 7, "room");
   scene.photo = glossy_photo(scene, rays, gbuffer, scene.lights, 1.0f);
   const auto matte = analysed(std::move(scene));
-  const std::vector<MaterialEstimate> estimates =
-      estimate_materials(matte->scene(), matte->rays(), matte->gbuffer(), matte->analysis(), {}, Progress::silent());
+  const std::vector<MaterialEstimate> estimates = estimate_materials(
+      matte->scene(), matte->rays(), matte->gbuffer(), matte->analysis(), kQuickEstimate, Progress::silent());
   EXPECT_EQ(estimates.size(), 6u);  // the room's objects, each shown by over 100 pixels
   for (const MaterialEstimate& m : estimates) {
     std::printf("[ figures  ] matte room's %s: a highlight explains %.1f %%\n", m.object.c_str(), 100.0f * m.explained);
