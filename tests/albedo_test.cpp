@@ -99,13 +99,31 @@ TEST(RecoverAlbedo, FillsDeepShadowFromTheSameSurfaceNotByDividing) {
   EXPECT_NEAR(a.mean.y(), 0.5f, 1e-4f);
 }
 
-TEST(RecoverAlbedo, ClampsWhatNoAlbedoCouldReflect) {
+// A pixel 1000 times brighter than its light allows (an unmodelled highlight,
+// or an illumination wrong there) is not divided but filled from its
+// surface, and marked.
+TEST(RecoverAlbedo, FillsWhatNoSurfaceCouldReflect) {
   Synthetic s;
   s.make_photo();
-  s.photo.at(40, 18) *= 1000.0f;  // a highlight far brighter than the light allows
+  s.photo.at(40, 18) *= 1000.0f;
   const AlbedoImages a = recover_albedo(s.photo, {}, s.illumination, s.gbuffer);
-  EXPECT_LE(a.albedo.at(40, 18).maxCoeff(), 10.0f);
-  EXPECT_GT(a.albedo.at(40, 18).minCoeff(), 9.0f);
+  EXPECT_FLOAT_EQ(a.bright_bound, 1.0f);  // the albedo's 99th percentile is 0.8
+  EXPECT_EQ(a.too_bright_pixels, size_t(1));
+  EXPECT_EQ(a.too_bright[size_t(18) * kW + 40], 1);
+  EXPECT_LT(max_error(a.albedo.at(40, 18), true_albedo(40, 18)), 0.02f);
+}
+
+// Where the albedo's scale is off (lights brighter than the scene says),
+// the brightest surfaces are not taken for impossible ones: the bound
+// follows the albedo's 99th percentile.
+TEST(RecoverAlbedo, ABrightScaleIsNotTakenForImpossibleAlbedo) {
+  Synthetic s;
+  s.make_photo();
+  for (Vec3& p : s.photo.pixels) p *= 2.0f;  // albedos 0.4-1.6
+  const AlbedoImages a = recover_albedo(s.photo, {}, s.illumination, s.gbuffer);
+  EXPECT_GT(a.bright_bound, 1.25f * 1.5f);
+  EXPECT_EQ(a.too_bright_pixels, size_t(0));
+  EXPECT_LT(max_error(a.albedo.at(40, 18), 2.0f * true_albedo(40, 18)), 1e-5f);
 }
 
 }  // namespace

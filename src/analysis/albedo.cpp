@@ -10,7 +10,48 @@ namespace {
 constexpr float kMinCoverage = 0.5f;        // below: too little geometry in the pixel to divide
 constexpr float kMinRelativeLight = 0.01f;  // below this share of the median illumination: unreliable
 constexpr float kMaxAlbedo = 10.0f;         // guards against division blow-ups
+// A matte surface reflects at most what reaches it: an albedo above 1 says
+// the illumination divided by is wrong there (a side face the model shows and
+// the photo does not, a shadow that is not in the photo, an unmodelled
+// highlight). The bound is 1, or a margin above the 99th percentile where the
+// albedo's scale is itself off (the lights' powers only roughly known).
+constexpr float kBrightPercentile = 0.99f;
+constexpr float kBrightMargin = 1.25f;
 constexpr int kFillPasses = 256;
+
+// Grows the albedo of the reliable pixels (known 1) into those to fill
+// (known 0), one ring of pixels per pass, each taking the mean of its
+// reliable neighbours (on its own surface only, or any); returns how many
+// it filled.
+size_t grow_reliable(Image& albedo, std::vector<int8_t>& known, const GBuffer& g, bool same_surface_only) {
+  const int w = albedo.width, h = albedo.height;
+  size_t filled = 0;
+  for (int pass = 0; pass < kFillPasses; ++pass) {
+    std::vector<std::pair<size_t, Vec3>> updates;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        if (known[size_t(y) * w + x] != 0) continue;
+        Vec3 acc = Vec3::Zero();
+        int n = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+            if (known[size_t(ny) * w + nx] != 1 || (same_surface_only && !g.same_surface(x, y, nx, ny))) continue;
+            acc += albedo.at(nx, ny);
+            ++n;
+          }
+        if (n) updates.emplace_back(size_t(y) * w + x, acc / float(n));
+      }
+    if (updates.empty()) break;
+    for (const auto& [i, a] : updates) {
+      albedo.pixels[i] = a;
+      known[i] = 1;
+    }
+    filled += updates.size();
+  }
+  return filled;
+}
 
 }  // namespace
 
@@ -31,9 +72,7 @@ AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clip
 
   // known: 1 reliable, 0 to fill, -1 background (nothing to fill)
   std::vector<int8_t> known(size_t(w) * h, -1);
-  std::vector<std::pair<size_t, Vec3>> at_least;  // the clipped pixels' lower bounds
-  Vec3 sum = Vec3::Zero();
-  size_t count = 0;
+  std::vector<float> brightest;  // each divided pixel's largest channel
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const float c = g.coverage(x, y);
@@ -46,44 +85,43 @@ AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clip
       const Vec3 surface_part = (photo.at(x, y) - (1.0f - c) * illum.background.at(x, y)).cwiseMax(0.0f);
       const Vec3 a = surface_part.cwiseQuotient(c * L).cwiseMin(kMaxAlbedo);
       out.albedo.at(x, y) = a;
-      // A clipped pixel's radiance is only known to be at least its value:
-      // its albedo is filled, and then raised to that lower bound.
-      if (any_clipped && clipped[i]) {
-        at_least.emplace_back(i, a);
-        continue;
-      }
       known[i] = 1;
+      if (!(any_clipped && clipped[i])) brightest.push_back(a.maxCoeff());
+    }
+  out.bright_bound = 1.0f;
+  if (!brightest.empty()) {
+    const auto at = brightest.begin() + ptrdiff_t(kBrightPercentile * float(brightest.size() - 1));
+    std::nth_element(brightest.begin(), at, brightest.end());
+    out.bright_bound = std::max(1.0f, kBrightMargin * *at);
+  }
+  out.too_bright.assign(size_t(w) * h, 0);
+  std::vector<std::pair<size_t, Vec3>> at_least;  // the clipped pixels' lower bounds
+  Vec3 sum = Vec3::Zero();
+  size_t count = 0;
+  for (size_t i = 0; i < known.size(); ++i) {
+    if (known[i] != 1) continue;
+    const Vec3& a = out.albedo.pixels[i];
+    // A clipped pixel's radiance is only known to be at least its value:
+    // its albedo is filled, and then raised to that lower bound.
+    if (any_clipped && clipped[i]) {
+      at_least.emplace_back(i, a.cwiseMin(out.bright_bound));
+      known[i] = 0;
+    } else if (a.maxCoeff() > out.bright_bound) {
+      out.too_bright[i] = 1;
+      ++out.too_bright_pixels;
+      known[i] = 0;
+    } else {
       sum += a;
       ++count;
     }
+  }
   if (count) out.mean = sum / float(count);
 
-  // Grow the reliable albedo into the unreliable pixels of the same surface,
-  // one ring of pixels per pass.
-  for (int pass = 0; pass < kFillPasses; ++pass) {
-    std::vector<std::pair<size_t, Vec3>> updates;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        if (known[size_t(y) * w + x] != 0) continue;
-        Vec3 acc = Vec3::Zero();
-        int n = 0;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int nx = x + dx, ny = y + dy;
-            if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-            if (known[size_t(ny) * w + nx] != 1 || !g.same_surface(x, y, nx, ny)) continue;
-            acc += out.albedo.at(nx, ny);
-            ++n;
-          }
-        if (n) updates.emplace_back(size_t(y) * w + x, acc / float(n));
-      }
-    if (updates.empty()) break;
-    for (const auto& [i, a] : updates) {
-      out.albedo.pixels[i] = a;
-      known[i] = 1;
-    }
-    out.filled += updates.size();
-  }
+  // The reliable albedo grown into the unreliable pixels of the same
+  // surface; what no pixel of its surface reaches (a face whose every pixel
+  // is unreliable) then from any neighbour.
+  out.filled += grow_reliable(out.albedo, known, g, true);
+  out.filled += grow_reliable(out.albedo, known, g, false);
   for (size_t i = 0; i < known.size(); ++i)
     if (known[i] == 0) {
       out.albedo.pixels[i] = out.mean;

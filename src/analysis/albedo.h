@@ -1,7 +1,8 @@
 // Albedo = photo / illumination (thesis 2.4.2), per pixel, with the pixels
 // where the illumination is too small to divide by (deep shadow, grazing
-// light), the geometry covers too little of the pixel, or the photo clipped
-// filled from reliable neighbours on the same surface.
+// light), the geometry covers too little of the pixel, the photo clipped, or
+// the albedo would be brighter than a surface can be filled from reliable
+// neighbours on the same surface.
 #pragma once
 
 #include "core/image.h"
@@ -21,6 +22,11 @@ struct AlbedoImages {
   Image albedo_coverage;             // albedo x coverage: 0 on the background, like albedo_gt.exr
   Vec3 mean = Vec3::Constant(0.5f);  // mean over reliable pixels; the default for unseen surfaces
   size_t filled = 0;                 // pixels filled from neighbours or the mean
+  // 1 per pixel whose photo / illumination came out brighter than a surface
+  // can be (above bright_bound: the illumination is wrong there), filled.
+  std::vector<uint8_t> too_bright;
+  size_t too_bright_pixels = 0;
+  float bright_bound = 1.0f;
   // 1 per pixel near an edge of the illumination that the photo shows a few
   // pixels away (IlluminationAlignment; with align_edges, the illumination
   // divided by there was moved onto the photo's edges); empty: not looked for.

@@ -109,13 +109,15 @@ AnalysisOptions read_options(const JsonReader& r, const nlohmann::json& j) {
   return o;
 }
 
-// 1 where the division was not trusted for its edges or for a highlight,
-// 0 elsewhere.
+// 1 where the division was not trusted for its edges, for a highlight or for
+// an albedo brighter than a surface can be, 0 elsewhere.
 std::vector<float> unreliable_marks(const Analysis& a) {
   std::vector<float> marks(a.albedo.albedo.size(), 0.0f);
   for (size_t i = 0; i < a.albedo.edge_mismatch.size() && i < marks.size(); ++i) marks[i] = a.albedo.edge_mismatch[i];
   for (size_t i = 0; i < a.highlights.size() && i < marks.size(); ++i)
     marks[i] = std::max<float>(marks[i], a.highlights[i]);
+  for (size_t i = 0; i < a.albedo.too_bright.size() && i < marks.size(); ++i)
+    marks[i] = std::max<float>(marks[i], a.albedo.too_bright[i]);
   return marks;
 }
 

@@ -36,7 +36,7 @@ Vec3 Integrator::environment(const Vec3& origin, const Vec3& dir) const {
 Vec3 Integrator::unoccluded(const SurfacePoint& p, const LightSample& s) const {
   if (s.irradiance.isZero()) return Vec3::Zero();
   const ShadowRay ray = scene_.shadow_ray(p, s.direction, s.distance);
-  return scene_.occluded(ray.origin, ray.dir, ray.tmax) ? Vec3::Zero() : s.irradiance;
+  return scene_.occluded(ray) ? Vec3::Zero() : s.irradiance;
 }
 
 Vec3 Integrator::from_lights(const SurfacePoint& p, Rng& rng) const {
@@ -83,7 +83,7 @@ Vec3 Integrator::from_environment(const SurfacePoint& p, const ProbeEnvironment*
     if (env.sample(probe, u, d, pdf)) {
       const float cos_theta = p.normal.dot(d);
       const ShadowRay ray = scene_.shadow_ray(p, d, std::numeric_limits<float>::infinity());
-      if (cos_theta > 0.0f && !scene_.occluded(ray.origin, ray.dir, ray.tmax)) {
+      if (cos_theta > 0.0f && !scene_.occluded(ray)) {
         // Below the facet the path's bounce is not cast (it would leave
         // through the facet), so this sample is the only one that reaches d.
         const float weight = d.dot(p.geometric_normal) > 0.0f ? power_heuristic(pdf, cos_theta * kInvPi) : 1.0f;

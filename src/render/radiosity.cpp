@@ -172,7 +172,7 @@ RadiosityGather::RadiosityGather(const NodeMesh& nodes, const NodeMesh& scene, c
     const Vec3 to_eye = *viewpoint - p.position;
     const float distance = to_eye.norm();
     const ShadowRay ray = rays.shadow_ray(p, to_eye / distance, distance);
-    return !rays.occluded(ray.origin, ray.dir, ray.tmax);
+    return !rays.occluded(ray);
   };
   tbb::parallel_for(size_t(0), n_nodes, [&](size_t n) {
     Rng rng(options.seed, n, 0x7ad105);

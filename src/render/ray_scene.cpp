@@ -8,13 +8,92 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <unordered_map>
 #include <vector>
 
 namespace relight {
 
+namespace {
+
+// Which triangles make one smooth surface, for shadow rays that leave it on
+// the side its normals face: a triangle of the same part (joined to the
+// ray's own through edges whose facets turn by less than kJoinTurn) within
+// kReach of its size of where the ray leaves, whose vertices' normals lean on
+// the mean within kSmoothLean of those of the ray's triangle, does not block
+// the ray. So little of a surface bending so little does not shadow itself
+// where its normals face the light; a hit there is the facets standing off
+// the surface their normals describe: a coarse tessellation at the
+// terminator, or vertices a centimetre off (a scanned or hand-modelled
+// mesh), which would speckle it with their own shadows. A box's faces (even
+// with their normals averaged at the edges), a bowl's far side, a table top
+// over a floor (not joined to it) still shadow.
+struct SmoothSurfaces {
+  static constexpr float kSmoothLean = 0.866f;  // cos 30 degrees
+  static constexpr float kJoinTurn = 0.5f;      // cos 60 degrees
+  static constexpr float kReach = 4.0f;         // times the longest edge of the ray's triangle
+  std::vector<Vec3> mean_normal;                // per triangle; empty: the mesh has no normals
+  std::vector<uint32_t> part;                   // per triangle, its part's first triangle
+  std::vector<float> reach;                     // per triangle
+
+  explicit SmoothSurfaces(const TriangleMesh& mesh) {
+    if (!mesh.has_normals()) return;
+    const size_t n = mesh.triangles.size();
+    mean_normal.reserve(n);
+    reach.reserve(n);
+    std::vector<Vec3> facet(n);
+    for (size_t t = 0; t < n; ++t) {
+      const auto& v = mesh.triangles[t];
+      const Vec3 sum = mesh.normals[v[0]] + mesh.normals[v[1]] + mesh.normals[v[2]];
+      mean_normal.push_back(sum.squaredNorm() > 0.0f ? Vec3(sum.normalized()) : Vec3::Zero());
+      const Vec3 &p0 = mesh.positions[v[0]], &p1 = mesh.positions[v[1]], &p2 = mesh.positions[v[2]];
+      facet[t] = (p1 - p0).cross(p2 - p0).normalized();
+      reach.push_back(kReach *
+                      std::sqrt(std::max({(p1 - p0).squaredNorm(), (p2 - p1).squaredNorm(), (p0 - p2).squaredNorm()})));
+    }
+    // Union-find over the triangles, halving the paths; an edge joins the
+    // two triangles that share it where their facets turn little.
+    part.resize(n);
+    for (uint32_t t = 0; t < n; ++t) part[t] = t;
+    const auto root = [&](uint32_t t) {
+      while (part[t] != t) t = part[t] = part[part[t]];
+      return t;
+    };
+    std::unordered_map<uint64_t, uint32_t> first_with_edge;
+    first_with_edge.reserve(3 * n);
+    for (uint32_t t = 0; t < n; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+        const uint64_t edge = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+        const auto [it, added] = first_with_edge.try_emplace(edge, t);
+        if (!added && std::abs(facet[t].dot(facet[it->second])) > kJoinTurn) part[root(t)] = root(it->second);
+      }
+    for (uint32_t t = 0; t < n; ++t) part[t] = root(t);
+  }
+  // Whether triangle `hit`, `distance` along a ray leaving triangle `from`,
+  // is of the surface the ray leaves.
+  bool own_surface(uint32_t from, uint32_t hit, float distance) const {
+    return part[from] == part[hit] && distance < reach[from] && mean_normal[from].dot(mean_normal[hit]) > kSmoothLean;
+  }
+};
+
+// Embree's occlusion filter: a hit on the smooth surface the ray leaves (its
+// id, ShadowRay::from) is passed over.
+void pass_over_own_surface(const RTCFilterFunctionNArguments* args) {
+  const auto& smooth = *static_cast<const SmoothSurfaces*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const uint32_t from = RTCRayN_id(args->ray, args->N, i);
+    if (from != ShadowRay::kNoTriangle &&
+        smooth.own_surface(from, RTCHitN_primID(args->hit, args->N, i), RTCRayN_tfar(args->ray, args->N, i)))
+      args->valid[i] = 0;
+  }
+}
+}  // namespace
+
 struct RayScene::Embree {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  std::unique_ptr<SmoothSurfaces> smooth;
   ~Embree() {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
@@ -66,6 +145,11 @@ RayScene::RayScene(const TriangleMesh& mesh) : mesh_(mesh), embree_(std::make_un
                                                                  3 * sizeof(uint32_t), mesh.triangles.size()));
   for (size_t i = 0; i < mesh.triangles.size(); ++i)
     for (int c = 0; c < 3; ++c) indices[3 * i + c] = mesh.triangles[i][c];
+  embree_->smooth = std::make_unique<SmoothSurfaces>(mesh);
+  if (!embree_->smooth->mean_normal.empty()) {
+    rtcSetGeometryUserData(geom, embree_->smooth.get());
+    rtcSetGeometryOccludedFilterFunction(geom, pass_over_own_surface);
+  }
   rtcCommitGeometry(geom);
   rtcAttachGeometry(embree_->scene, geom);
   rtcReleaseGeometry(geom);
@@ -131,9 +215,16 @@ void RayScene::describe_hit(uint32_t prim, const Vec3& origin, const Vec3& dir, 
 }
 
 bool RayScene::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {
+  return occluded(ShadowRay{origin, dir, tmax});
+}
+
+bool RayScene::occluded(const ShadowRay& shadow) const {
+  const Vec3 &origin = shadow.origin, &dir = shadow.dir;
+  const float tmax = shadow.tmax;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay ray{};
+  ray.id = shadow.from;
   ray.org_x = origin.x(), ray.org_y = origin.y(), ray.org_z = origin.z();
   ray.dir_x = dir.x(), ray.dir_y = dir.y(), ray.dir_z = dir.z();
   ray.tnear = 0.0f;
@@ -162,7 +253,7 @@ void RayScene::occluded(ShadowPacket& packet) const {
     rays.tnear[j] = 0.0f;
     rays.mask[j] = ~0u;
     rays.time[j] = 0.0f;
-    rays.id[j] = 0;
+    rays.id[j] = packet.from_[j];
     rays.flags[j] = 0;
   }
   rtcOccluded16(valid, embree_->scene, &context, &rays);

@@ -26,11 +26,16 @@ struct SurfacePoint {
 };
 
 // A segment for an occlusion query: origin + t dir, t in (0, tmax). A ray
-// with tmax <= 0 is no query at all (reported unblocked).
+// with tmax <= 0 is no query at all (reported unblocked). `from`: the
+// triangle of a smooth surface the ray leaves on the side its normals face,
+// which does not shadow itself there (RayScene::shadow_ray); kNoTriangle
+// for any other ray.
 struct ShadowRay {
+  static constexpr uint32_t kNoTriangle = ~0u;
   Vec3 origin;
   Vec3 dir;
   float tmax = 0.0f;
+  uint32_t from = kNoTriangle;
 };
 
 class RayScene;
@@ -53,6 +58,7 @@ class ShadowPacket {
       dir_[c][j] = ray.dir[c];
     }
     tfar_[j] = ray.tmax;
+    from_[j] = ray.from;
     return j;
   }
   // After RayScene::occluded(packet): whether something blocks ray j.
@@ -64,6 +70,7 @@ class ShadowPacket {
   alignas(64) float origin_[3][kCapacity] = {};
   alignas(64) float dir_[3][kCapacity] = {};
   alignas(64) float tfar_[kCapacity] = {};
+  alignas(64) uint32_t from_[kCapacity] = {};
   int size_ = 0;
 };
 
@@ -83,6 +90,8 @@ class RayScene {
   bool intersect_triangle(uint32_t prim, const Vec3& origin, const Vec3& dir, SurfacePoint& hit) const;
   // True if anything blocks the segment origin + t dir, t in (0, tmax).
   bool occluded(const Vec3& origin, const Vec3& dir, float tmax) const;
+  // True if anything but the smooth surface it leaves blocks the ray.
+  bool occluded(const ShadowRay& ray) const;
   // The same for a packet of rays at once; then packet.blocked(j) answers.
   void occluded(ShadowPacket& packet) const;
 
@@ -102,11 +111,15 @@ class RayScene {
   // a coarse or slightly misplaced facet, tilted against its normals, then
   // neither shadows itself nor cuts off the light that grazes it, and light
   // below the facet but above the smooth surface reaches the point where the
-  // facet does not block it.
+  // facet does not block it. Nor does the rest of that smooth surface
+  // (SmoothSurfaces): facets a little off, as a scanned or hand-modelled
+  // mesh's are, would speckle it with their own shadows.
   ShadowRay shadow_ray(const SurfacePoint& p, const Vec3& dir, float distance) const {
-    const Vec3 origin = dir.dot(p.normal) > 0.0f ? Vec3(p.position + (offset_scale(p) + p.lift) * p.geometric_normal)
-                                                 : offset_origin(p, dir);
-    return {origin, dir, std::isfinite(distance) ? distance * (1.0f - 1e-4f) : distance};
+    const float tmax = std::isfinite(distance) ? distance * (1.0f - 1e-4f) : distance;
+    if (dir.dot(p.normal) > 0.0f)
+      return {p.position + (offset_scale(p) + p.lift) * p.geometric_normal, dir, tmax,
+              mesh_.has_normals() ? p.prim : ShadowRay::kNoTriangle};
+    return {offset_origin(p, dir), dir, tmax};
   }
   // The shadow ray from p to the point `target`, its direction not made
   // unit (the target is at t = 1): a square root and a division the less.
