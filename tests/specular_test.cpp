@@ -165,11 +165,11 @@ TEST(GlossyRoom, AlbedoWithoutHighlightsGivenOrEstimatedAndHighlightsThatMove) {
   std::map<std::string, Gloss> found;
   for (const MaterialEstimate& m : estimate_materials(matte->scene(), matte->rays(), matte->gbuffer(),
                                                       matte->analysis(), kQuickEstimate, Progress::silent())) {
-    std::printf("[ figures  ] glossy room's %s: %s, a highlight explains %.1f %%\n", m.object.c_str(),
+    std::printf("[ figures  ] glossy room's %s: %s, a highlight explains %.1f %%\n", m.name.c_str(),
                 m.gloss ? fmt::format("roughness {:.2f} specular {:.2f}", m.gloss->roughness, m.gloss->specular).c_str()
                         : "matte",
                 100.0f * m.explained);
-    if (m.gloss) found[m.object] = *m.gloss;
+    if (m.gloss) found[m.name] = *m.gloss;
   }
   EXPECT_TRUE(found.contains("ball"));
   for (const auto& [name, gloss] : found) {
@@ -210,6 +210,31 @@ TEST(GlossyRoom, AlbedoWithoutHighlightsGivenOrEstimatedAndHighlightsThatMove) {
 // robust fit finds the scale and how much it explains; differences that
 // follow no highlight, or a highlight a few pixels of noise predict, it
 // finds explain next to nothing.
+// Objects made wholly of a material no other triangle has are estimated
+// together; a material some other object mixes with another is not.
+TEST(EstimationUnits, PoolTheObjectsOfAMaterialTheyAloneHave) {
+  TriangleMesh mesh;
+  mesh.objects = {"cap_a", "cap_b", "table", "chair"};
+  mesh.materials = {"Stone", "Wood"};
+  for (const auto& [object, material] :
+       {std::pair{0u, 0u}, {0u, 0u}, {1u, 0u}, {2u, 1u}, {3u, 1u}, {3u, TriangleMesh::kNoMaterial}}) {
+    mesh.triangles.push_back({0, 1, 2});
+    mesh.triangle_objects.push_back(object);
+    mesh.triangle_materials.push_back(material);
+  }
+  const auto names = [](const std::vector<EstimationUnit>& units) {
+    std::vector<std::string> out;
+    for (const EstimationUnit& u : units) out.push_back(u.name + "/" + std::to_string(u.objects.size()));
+    return out;
+  };
+  // Stone is the caps' alone; Wood is the table's and part of the chair.
+  EXPECT_EQ(names(estimation_units(mesh)), (std::vector<std::string>{"Stone/2", "table/1", "chair/1"}));
+  mesh.triangle_materials[5] = 1;  // the chair wholly Wood too
+  EXPECT_EQ(names(estimation_units(mesh)), (std::vector<std::string>{"Stone/2", "Wood/2"}));
+  mesh.triangle_materials[2] = 1;  // cap_b of Wood: cap_a is Stone's only object
+  EXPECT_EQ(names(estimation_units(mesh)), (std::vector<std::string>{"cap_a/1", "Wood/3"}));
+}
+
 TEST(FitHighlight, FindsAScaledHighlightAmongTextureStepsAndNothingInUnrelatedOnes) {
   std::mt19937 rng(3);
   std::normal_distribution<float> highlight(0.0f, 0.05f), noise(0.0f, 0.01f);
@@ -244,9 +269,9 @@ TEST(MaterialEstimation, LeavesAMattePhotosSurfacesMatte) {
       matte->scene(), matte->rays(), matte->gbuffer(), matte->analysis(), kQuickEstimate, Progress::silent());
   EXPECT_EQ(estimates.size(), 6u);  // the room's objects, each shown by over 100 pixels
   for (const MaterialEstimate& m : estimates) {
-    std::printf("[ figures  ] matte room's %s: a highlight explains %.1f %%\n", m.object.c_str(), 100.0f * m.explained);
-    EXPECT_FALSE(m.gloss) << m.object;
-    EXPECT_LT(m.explained, 0.5f * kMinExplained) << m.object;
+    std::printf("[ figures  ] matte room's %s: a highlight explains %.1f %%\n", m.name.c_str(), 100.0f * m.explained);
+    EXPECT_FALSE(m.gloss) << m.name;
+    EXPECT_LT(m.explained, 0.5f * kMinExplained) << m.name;
   }
 }
 
@@ -366,8 +391,8 @@ TEST_P(GlossyScene, AlbedoWithEstimatedMaterialsNearTheGivenOnes) {
        estimate_materials(matte->scene(), matte->rays(), matte->gbuffer(), matte->analysis(), {}, Progress::silent()))
     if (m.gloss) {
       std::printf("[ figures  ] glossy %s: %s estimated roughness %.2f specular %.2f (explains %.1f %%)\n", GetParam(),
-                  m.object.c_str(), m.gloss->roughness, m.gloss->specular, 100.0f * m.explained);
-      found[m.object] = *m.gloss;
+                  m.name.c_str(), m.gloss->roughness, m.gloss->specular, 100.0f * m.explained);
+      found[m.name] = *m.gloss;
     }
   set_materials(scene, found);
   analysed_folder(folder, estimated_db, std::move(scene));

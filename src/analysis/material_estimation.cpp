@@ -143,6 +143,42 @@ Image photo_as_divided(const Scene& scene, const Analysis& analysis) {
 
 }  // namespace
 
+std::vector<EstimationUnit> estimation_units(const TriangleMesh& mesh) {
+  constexpr uint32_t kMixed = TriangleMesh::kNoMaterial - 1;
+  const size_t objects = mesh.objects.size();
+  // Each object's one material (kNoMaterial: none, kMixed: several), and
+  // each material's objects, and whether all of them are wholly it.
+  std::vector<uint32_t> material_of(objects, kMixed + 1);  // unset
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    uint32_t& m = material_of[mesh.triangle_objects[t]];
+    const uint32_t own = mesh.has_materials() ? mesh.triangle_materials[t] : TriangleMesh::kNoMaterial;
+    m = m == kMixed + 1 || m == own ? own : kMixed;
+  }
+  std::vector<uint32_t> sharing(mesh.materials.size(), 0);
+  std::vector<uint8_t> whole(mesh.materials.size(), 1);
+  for (size_t t = 0; t < mesh.triangles.size() && mesh.has_materials(); ++t) {
+    const uint32_t m = mesh.triangle_materials[t];
+    if (m < mesh.materials.size() && material_of[mesh.triangle_objects[t]] != m) whole[m] = 0;
+  }
+  for (size_t o = 0; o < objects; ++o)
+    if (material_of[o] < mesh.materials.size()) ++sharing[material_of[o]];
+  std::vector<EstimationUnit> units;
+  std::vector<int32_t> unit_of_material(mesh.materials.size(), -1);
+  for (uint32_t o = 0; o < objects; ++o) {
+    const uint32_t m = material_of[o];
+    if (m >= mesh.materials.size() || sharing[m] < 2 || !whole[m]) {
+      units.push_back({mesh.objects[o], {o}});
+      continue;
+    }
+    if (unit_of_material[m] < 0) {
+      unit_of_material[m] = int32_t(units.size());
+      units.push_back({mesh.materials[m], {}});
+    }
+    units[size_t(unit_of_material[m])].objects.push_back(o);
+  }
+  return units;
+}
+
 HighlightFit fit_highlight(const std::vector<float>& dx, const std::vector<float>& dy, float max_scale) {
   double xx = 0.0, xy = 0.0;
   for (size_t i = 0; i < dx.size(); ++i) xx += double(dx[i]) * dx[i], xy += double(dx[i]) * dy[i];
@@ -186,19 +222,28 @@ std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RaySc
   for (const int32_t o : view.object)
     if (o >= 0) ++pixels[o];
   std::vector<MaterialEstimate> estimates;
+  std::vector<EstimationUnit> units;
   std::vector<std::string> candidates;
-  std::vector<int32_t> estimate_of(objects, -1);
-  for (size_t o = 0; o < objects; ++o) {
-    if (pixels[o] < options.min_pixels) continue;
-    estimate_of[o] = int32_t(estimates.size());
-    estimates.push_back({scene.mesh.objects[o], pixels[o], std::nullopt, 0.0f, ""});
-    candidates.push_back(scene.mesh.objects[o]);
+  for (EstimationUnit& unit : estimation_units(scene.mesh)) {
+    MaterialEstimate m{unit.name, {}, 0, std::nullopt, 0.0f, ""};
+    for (const uint32_t o : unit.objects) m.objects.push_back(scene.mesh.objects[o]), m.pixels += pixels[o];
+    if (m.pixels < options.min_pixels) continue;
+    candidates.insert(candidates.end(), m.objects.begin(), m.objects.end());
+    estimates.push_back(std::move(m));
+    units.push_back(std::move(unit));
   }
   if (candidates.empty()) return estimates;
+  // Per unit: the differences of its objects, one after the other.
+  const auto pooled = [&](const std::vector<std::vector<float>>& per_object) {
+    std::vector<std::vector<float>> d(units.size());
+    for (size_t k = 0; k < units.size(); ++k)
+      for (const uint32_t o : units[k].objects) d[k].insert(d[k].end(), per_object[o].begin(), per_object[o].end());
+    return d;
+  };
 
-  const std::vector<std::vector<float>> shading = differences(view, view.shading, w, h, objects);
+  const std::vector<std::vector<float>> shading = pooled(differences(view, view.shading, w, h, objects));
   const Lighting lighting = strategy_lighting(scene, rays, analysis.options.strategy);
-  // Per object: the best fit so far and its roughness.
+  // Per unit: the best fit so far and its roughness.
   std::vector<HighlightFit> best(estimates.size());
   std::vector<float> best_roughness(estimates.size(), 0.0f);
   std::vector<uint8_t> any_highlight(estimates.size(), 0);
@@ -210,12 +255,10 @@ std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RaySc
       const Vec3& e = analysis.illumination.surface.pixels[i];
       predicted[i] = view.object[i] < 0 ? 0.0f : highlights.pixels[i].cwiseQuotient(e).mean();
     }
-    const std::vector<std::vector<float>> highlight = differences(view, predicted, w, h, objects);
-    for (size_t o = 0; o < objects; ++o) {
-      const int32_t k = estimate_of[o];
-      if (k < 0) continue;
-      const HighlightFit fit = fit_highlight(highlight[o], shading[o], 1.0f / kDefaultSpecular);
-      if (std::any_of(highlight[o].begin(), highlight[o].end(), [](float d) { return d != 0.0f; }))
+    const std::vector<std::vector<float>> highlight = pooled(differences(view, predicted, w, h, objects));
+    for (size_t k = 0; k < units.size(); ++k) {
+      const HighlightFit fit = fit_highlight(highlight[k], shading[k], 1.0f / kDefaultSpecular);
+      if (std::any_of(highlight[k].begin(), highlight[k].end(), [](float d) { return d != 0.0f; }))
         any_highlight[k] = 1;
       if (fit.scale > 0.0f && fit.explained > best[k].explained) best[k] = fit, best_roughness[k] = roughness;
     }

@@ -34,8 +34,11 @@ inline constexpr float kMinExplained = 0.1f;
 // The roughnesses tried (Principled's, alpha = roughness squared).
 inline constexpr float kRoughnessGrid[] = {0.05f, 0.1f, 0.15f, 0.2f, 0.3f, 0.4f, 0.55f, 0.7f};
 
+// One estimate: of an object, or of a material several objects share whole
+// (their pixels taken together; `materials` then names the material).
 struct MaterialEstimate {
-  std::string object;          // the geometry's object name
+  std::string name;                  // the object's or the material's
+  std::vector<std::string> objects;  // the objects it covers
   size_t pixels = 0;           // the pixels that show it whole
   std::optional<Gloss> gloss;  // found; none: left matte (`reason` says why)
   float explained = 0.0f;      // the share of its fine variation the best highlight explains
@@ -52,10 +55,21 @@ struct MaterialEstimationOptions {
 // Estimates the objects of `scene` that `scene.materials` leaves matte, from
 // the photo and `analysis` (the scene analysed with them matte, through the
 // camera `gbuffer` was made with). One estimate per object the photo shows
-// by at least min_pixels whole pixels, in the geometry's order.
+// by at least min_pixels whole pixels, in the geometry's order; objects
+// made of one material that no other surface has (ten column caps of one
+// stone) are estimated together, as one.
 std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
                                                  const Analysis& analysis, const MaterialEstimationOptions& options,
                                                  Progress& progress);
+
+// What is estimated as one: each object, but the objects made wholly of a
+// material that two or more objects and no other triangle have, taken
+// together under the material's name; in the order of their first object.
+struct EstimationUnit {
+  std::string name;
+  std::vector<uint32_t> objects;
+};
+std::vector<EstimationUnit> estimation_units(const TriangleMesh& mesh);
 
 // How far `dy` follows k x `dx` (one pair of pixels per entry): the robust
 // (Huber) slope through the origin, held to [0, max_scale], and the share

@@ -1,5 +1,7 @@
 // relight materials: which surfaces shine, estimated from the photo, written
 // as scene.json's `materials` (src/analysis/material_estimation.h).
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -24,17 +26,28 @@ struct MaterialsArgs {
   size_t min_pixels = MaterialEstimationOptions{}.min_pixels;
 };
 
+// "cap_1", or "Stone (a material: cap_1, cap_2 and 8 more)".
+std::string estimate_name(const MaterialEstimate& m) {
+  if (m.objects.size() == 1 && m.objects[0] == m.name) return m.name;
+  std::string objects = m.objects[0];
+  for (size_t i = 1; i < m.objects.size() && i < 3; ++i)
+    objects += (i + 1 == m.objects.size() ? " and " : ", ") + m.objects[i];
+  if (m.objects.size() > 3) objects += fmt::format(" and {} more", m.objects.size() - 3);
+  return fmt::format("{} (a material: {})", m.name, objects);
+}
+
 void print_estimate(const MaterialEstimate& m) {
+  const std::string name = estimate_name(m);
   if (m.gloss)
     std::printf(
         "%-16s glossy: roughness %.2f, specular %.2f (its highlights explain %.0f %% of its shading's fine "
         "variation; %zu pixels)%s\n",
-        m.object.c_str(), m.gloss->roughness, m.gloss->specular, 100.0f * m.explained, m.pixels,
+        name.c_str(), m.gloss->roughness, m.gloss->specular, 100.0f * m.explained, m.pixels,
         m.gloss->specular >= 1.0f ? "; as bright as a dielectric's get: a metal's, brighter and tinted, "
                                     "are not modelled"
                                   : "");
   else
-    std::printf("%-16s matte: %s (%zu pixels)\n", m.object.c_str(), m.reason.c_str(), m.pixels);
+    std::printf("%-16s matte: %s (%zu pixels)\n", name.c_str(), m.reason.c_str(), m.pixels);
 }
 
 void run_materials(const MaterialsArgs& args, Progress& progress) {
@@ -61,7 +74,7 @@ void run_materials(const MaterialsArgs& args, Progress& progress) {
   std::map<std::string, Gloss> materials = s.scene.materials;
   for (const MaterialEstimate& m : estimates) {
     print_estimate(m);
-    if (m.gloss) materials[m.object] = *m.gloss;
+    if (m.gloss) materials[m.name] = *m.gloss;
   }
   // The scene as given, with the materials: a camera the analysis
   // registered is its own business (relight register writes one).
@@ -89,7 +102,8 @@ void add_materials_command(CLI::App& app, Action& action) {
       "Analyses the scene with its surfaces matte (those `materials` names keep theirs), then predicts the\n"
       "  highlights its lights and environment would make on each object at roughnesses 0.05-0.7 and keeps the\n"
       "  one whose shape the photo shows, scaled to it. An object stays matte where no highlight explains 10 % of\n"
-      "  its shading's fine variation, or where its highlights are brighter than a dielectric's (a metal). Writes\n"
+      "  its shading's fine variation, or where its highlights are brighter than a dielectric's (a metal). Objects\n"
+      "  made wholly of a material no other surface has are estimated together, under the material's name. Writes\n"
       "  a complete scene.json; analyse that one. docs/algorithms.md section 13.",
       {{"relight materials scene.json -o scene_materials.json && relight analyze scene_materials.json -o analysis",
         "find the glossy surfaces, then analyse with their highlights taken off the photo"}}));
