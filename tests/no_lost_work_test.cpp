@@ -192,7 +192,11 @@ TEST(AnalysisCache, RenderNamesTheKeyOfABadAnalysisFile) {
              {"bounce_source", "mirror", "analysis.json: /bounce_source: unknown value 'mirror'"},
              {"unseen_albedo", 0.5, "analysis.json: /unseen_albedo"},
              {"unseen_triangles", relight::test::json::array({{1000000000, 0.5, 0.5, 0.5}}),
-              "analysis.json: /unseen_triangles/0: names a triangle the geometry does not have"}};
+              "analysis.json: /unseen_triangles/0: names a triangle the geometry does not have"},
+             {"as_divided", relight::test::json::array({{48, 0.5, 0.5, 0.5}}),
+              "analysis.json: /as_divided/0: names a pixel past the photo's"},
+             {"as_divided", relight::test::json::array({{1, 0.5}}),
+              "analysis.json: /as_divided/0: expected [pixel, r, g, b]"}};
   for (const auto& b : bad) {
     auto j = relight::test::json::parse(original);
     j[b.key] = b.value;

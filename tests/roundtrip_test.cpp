@@ -53,6 +53,23 @@ Analysis analyse_room(const RayScene& rays, const GBuffer& gbuffer, bool interre
   return analyze(room_truth().scene, rays, gbuffer, options, Progress::silent());
 }
 
+// A pixel whose albedo came out brighter than a surface can be is filled in
+// the albedo, but re-lit as divided (photo / the model's light), times its
+// coverage: the unchanged rig gives the photo back there.
+TEST(PhotoLayers, ReLightThePixelsTooBrightAsDivided) {
+  Scene scene;
+  scene.photo = Image(4, 3);
+  Analysis analysis;
+  analysis.albedo.albedo_coverage = Image(4, 3, Vec3::Constant(0.5f));
+  analysis.illumination.background = Image(4, 3);
+  analysis.coverage.assign(12, 1.0f);
+  analysis.coverage[5] = 0.5f;
+  analysis.albedo.as_divided = {{5, Vec3(4.0f, 3.0f, 2.0f)}};
+  const RelitLayers layers = photo_layers(scene, analysis);
+  EXPECT_EQ(layers.albedo_coverage.pixels[5], Vec3(2.0f, 1.5f, 1.0f));
+  EXPECT_EQ(layers.albedo_coverage.pixels[4], Vec3::Constant(0.5f));
+}
+
 TEST(RoundTrip, RecoversTheKnownAlbedoAndRelights) {
   const RoomTruth& t = room_truth();
   AnalysisOptions options;

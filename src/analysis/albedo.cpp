@@ -109,6 +109,7 @@ AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clip
     } else if (a.maxCoeff() > out.bright_bound) {
       out.too_bright[i] = 1;
       ++out.too_bright_pixels;
+      out.as_divided.emplace_back(uint32_t(i), a);
       known[i] = 0;
     } else {
       sum += a;

@@ -27,6 +27,13 @@ struct AlbedoImages {
   std::vector<uint8_t> too_bright;
   size_t too_bright_pixels = 0;
   float bright_bound = 1.0f;
+  // Those pixels' photo / illumination as divided (capped at 10), for
+  // re-lighting: the model's light is wrong there by a factor (a side face
+  // the photo does not show, a facet's own shadow), and the new light,
+  // rendered through the same model, is taken as wrong by the same factor.
+  // The unchanged rig then gives the photo back, and a new one changes it by
+  // the ratio of new to old light (photo_layers).
+  std::vector<std::pair<uint32_t, Vec3>> as_divided;
   // 1 per pixel near an edge of the illumination that the photo shows a few
   // pixels away (IlluminationAlignment; with align_edges, the illumination
   // divided by there was moved onto the photo's edges); empty: not looked for.

@@ -186,6 +186,10 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   for (const TriangleAlbedo& t : a.albedo.unseen_triangles)
     triangles.push_back({t.triangle, t.albedo.x(), t.albedo.y(), t.albedo.z()});
   j["unseen_triangles"] = std::move(triangles);
+  nlohmann::json as_divided = nlohmann::json::array();
+  for (const auto& [pixel, albedo] : a.albedo.as_divided)
+    as_divided.push_back({pixel, albedo.x(), albedo.y(), albedo.z()});
+  j["as_divided"] = std::move(as_divided);
   write_text_atomically(folder / "analysis.json", json_text(j));
   batch.commit();
   // An analysis of a scene that no longer shines leaves no highlights of an older one.
@@ -199,6 +203,7 @@ void replace_albedo(const fs::path& folder, const Analysis& analysis, const Imag
   Image albedo_coverage = albedo;
   for (size_t i = 0; i < albedo.size(); ++i) albedo_coverage.pixels[i] *= analysis.coverage[i];
   nlohmann::json j = JsonReader::parse_file(folder / "analysis.json");
+  j.erase("as_divided");  // the new albedo is re-lit as it is everywhere
   // Read above, rewritten here: the files this function exists to replace.
   for (const char* name : {"albedo.exr", "albedo_surface.exr", "albedo.png", "analysis.json"})
     allow_replacing_input(folder / name);
@@ -241,24 +246,35 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
     if (!(a.photo_exposure.minCoeff() > 0.0f) || !a.photo_exposure.allFinite())
       r.fail("/photo_exposure", "expected three positive numbers");
   }
-  if (const nlohmann::json* camera = r.optional(j, "camera")) a.registered_camera = camera_from_json(r, *camera, "/camera");
-  if (const nlohmann::json* triangles = r.optional(j, "unseen_triangles")) {
-    if (!triangles->is_array()) r.fail("/unseen_triangles", "expected an array");
-    for (size_t k = 0; k < triangles->size(); ++k) {
-      const nlohmann::json& t = (*triangles)[k];
-      const std::string at = json_child("/unseen_triangles", k);
-      if (!t.is_array() || t.size() != 4) r.fail(at, "expected [triangle, r, g, b]");
-      const uint64_t triangle = r.unsigned_integer(t[0], json_child(at, size_t(0)));
-      if (triangle >= scene.mesh.triangles.size()) r.fail(at, "names a triangle the geometry does not have");
-      a.albedo.unseen_triangles.push_back({uint32_t(triangle), Vec3(r.number(t[1], json_child(at, size_t(1))),
-                                                                    r.number(t[2], json_child(at, size_t(2))),
-                                                                    r.number(t[3], json_child(at, size_t(3))))});
-    }
-  }
+  if (const nlohmann::json* camera = r.optional(j, "camera"))
+    a.registered_camera = camera_from_json(r, *camera, "/camera");
   const uint64_t width = r.unsigned_integer(r.required(j, "", "width"), "/width");
   const uint64_t height = r.unsigned_integer(r.required(j, "", "height"), "/height");
   if (width != uint64_t(scene.photo.width) || height != uint64_t(scene.photo.height))
     r.fail("/width", "the analysis was made for a photo of another size");
+  // [index, r, g, b] entries: an index below `count`, and an albedo.
+  const auto indexed_albedos = [&](const char* key, uint64_t count, const char* index_name, const char* out_of_range,
+                                   const auto& add) {
+    const nlohmann::json* list = r.optional(j, key);
+    if (!list) return;
+    const std::string where = json_child("", key);
+    if (!list->is_array()) r.fail(where, "expected an array");
+    for (size_t k = 0; k < list->size(); ++k) {
+      const nlohmann::json& t = (*list)[k];
+      const std::string at = json_child(where, k);
+      if (!t.is_array() || t.size() != 4) r.fail(at, fmt::format("expected [{}, r, g, b]", index_name));
+      const uint64_t index = r.unsigned_integer(t[0], json_child(at, size_t(0)));
+      if (index >= count) r.fail(at, out_of_range);
+      add(uint32_t(index), Vec3(r.number(t[1], json_child(at, size_t(1))), r.number(t[2], json_child(at, size_t(2))),
+                                r.number(t[3], json_child(at, size_t(3)))));
+    }
+  };
+  indexed_albedos("unseen_triangles", scene.mesh.triangles.size(), "triangle",
+                  "names a triangle the geometry does not have", [&](uint32_t t, const Vec3& albedo) {
+                    a.albedo.unseen_triangles.push_back({t, albedo});
+                  });
+  indexed_albedos("as_divided", width * height, "pixel", "names a pixel past the photo's",
+                  [&](uint32_t i, const Vec3& albedo) { a.albedo.as_divided.emplace_back(i, albedo); });
   const auto text = [&](const char* key) {
     const nlohmann::json* v = r.optional(j, key);
     return v ? r.string(*v, json_child("", key)) : std::string();

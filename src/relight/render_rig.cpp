@@ -11,6 +11,8 @@ namespace relight {
 
 RelitLayers photo_layers(const Scene& scene, const Analysis& analysis) {
   RelitLayers layers{analysis.albedo.albedo_coverage, Image(scene.photo.width, scene.photo.height)};
+  for (const auto& [i, albedo] : analysis.albedo.as_divided)
+    layers.albedo_coverage.pixels[i] = analysis.coverage[i] * albedo;
   for (size_t i = 0; i < layers.background.size(); ++i) {
     const float c = analysis.coverage[i];
     layers.background.pixels[i] =
