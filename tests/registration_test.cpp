@@ -6,9 +6,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <random>
 
 #include "analysis/analysed_scene.h"
 #include "analysis/analysis_folder.h"
@@ -258,6 +261,39 @@ TEST_P(ReferenceRegistration, ACameraALittleOffIsRegisteredOrItsEdgesAligned) {
   EXPECT_GE(aligned.psnr, off.psnr + 1.0);
   EXPECT_TRUE(registered.registered);
   EXPECT_GE(registered.psnr, exact.psnr - 2.0);
+}
+
+// Every vertex moved by up to 1 cm (uniform in the ball), as a model a
+// centimetre off: the albedo comes within 3.5 dB of the exact geometry's.
+// Here 1.7-3.4 dB below at 16 paths; with bench/perturb_vertices.py's moves
+// 2.0-2.7 dB, and 2.4-4.0 dB before the albedo bound and the smooth
+// surfaces' shadows (docs/benchmarks.md, "Vertices moved by up to 1 cm").
+// #15 asks for 1 dB.
+TEST_P(ReferenceRegistration, VerticesMovedByUpTo1cm) {
+  const fs::path folder = test::reference_scenes_folder() / GetParam();
+  if (!fs::exists(folder / "scene.json")) GTEST_SKIP() << "reference scene " << folder << " not found";
+  const Scene scene = load_scene((folder / "scene.json").string(), Progress::silent());
+  const RayScene rays(scene.mesh);
+  const AlbedoFigures exact = analysed_albedo(scene, rays, false, false, folder);
+  // The file's vertices move, each by one offset: the mesh's copies of a
+  // vertex (one per normal it has on each side of a crease) move together.
+  Scene moved = scene;
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::map<std::array<float, 3>, Vec3> offset;
+  for (Vec3& p : moved.mesh.positions) {
+    const auto [it, added] = offset.try_emplace({p.x(), p.y(), p.z()});
+    if (added) {
+      do it->second = Vec3(unit(rng), unit(rng), unit(rng));
+      while (it->second.squaredNorm() > 1.0f);
+    }
+    p += 0.01f * it->second;
+  }
+  const RayScene moved_rays(moved.mesh);
+  const AlbedoFigures jittered = analysed_albedo(moved, moved_rays, false, false, folder);
+  std::printf("[ figures  ] %s: albedo with the exact geometry %.2f dB, every vertex moved up to 1 cm %.2f dB\n",
+              GetParam(), exact.psnr, jittered.psnr);
+  EXPECT_GE(jittered.psnr, exact.psnr - 3.5);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceRegistration, ::testing::Values("outdoor", "bookcase", "studio"));
