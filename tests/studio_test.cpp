@@ -23,6 +23,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "gui/colour_temperature.h"
 #include "gui/environment_entry.h"
@@ -1420,6 +1421,54 @@ class StudioTest : public QObject {
     QVERIFY((document().light(0).up - area.up).norm() < 1e-6f);
   }
 
+  // File > Find the Surfaces That Shine on the glossy studio without its
+  // materials: the ball is found, the scene with it written beside (never
+  // over the open one) and opened; on the matte room nothing is found and
+  // nothing written.
+  void finding_the_surfaces_that_shine_writes_and_opens_a_new_scene() {
+    const fs::path copy = fs::path(folder_.path().toStdString()) / "glossy";
+    fs::remove_all(copy);
+    fs::copy(fs::path(RELIGHT_SOURCE_DIR) / "tests/data/glossy/glossy_studio", copy, fs::copy_options::recursive);
+    nlohmann::json scene = nlohmann::json::parse(std::ifstream(copy / "scene.json"));
+    scene.erase("materials");
+    std::ofstream(copy / "scene.json") << scene.dump(2);
+    const auto read_text = [](const fs::path& file) {
+      std::ostringstream text;
+      text << std::ifstream(file).rdbuf();
+      return text.str();
+    };
+    const std::string original = read_text(copy / "scene.json");
+
+    QSignalSpy found(window_.get(), &MainWindow::materialsFound);
+    window_->find_materials(folder_.filePath("room_materials.json"));
+    QVERIFY(found.wait(60000));
+    QCOMPARE(found.at(0).at(0).toString(), QString());
+    QCOMPARE(found.at(0).at(1).toInt(), 0);
+    QVERIFY(!fs::exists(folder_.filePath("room_materials.json").toStdString()));
+
+    QSignalSpy opened(window_.get(), &MainWindow::sceneOpened);
+    window_->open_scene(QString::fromStdString((copy / "scene.json").string()));
+    QVERIFY(opened.wait(240000));
+    window_->find_materials(QString::fromStdString((copy / "scene.json").string()));
+    QVERIFY(found.wait(1000) || found.size() == 2);
+    QVERIFY(found.at(1).at(0).toString().contains("is the open scene"));
+
+    const fs::path out = copy / "scene_materials.json";
+    window_->find_materials(QString::fromStdString(out.string()));
+    QVERIFY(found.wait(240000));
+    QCOMPARE(found.at(2).at(0).toString(), QString());
+    QVERIFY(found.at(2).at(1).toInt() >= 1);
+    if (const auto boxes = window_->findChildren<QMessageBox*>(); !boxes.empty())
+      keep_picture("materials_found", *boxes.back());
+    QVERIFY(opened.wait(240000));
+    keep_picture("materials_opened", *window_);
+    const nlohmann::json written = nlohmann::json::parse(std::ifstream(out));
+    QVERIFY(written["materials"].contains("ball"));
+    QVERIFY(!written["materials"].contains("back_wall"));
+    QCOMPARE(read_text(copy / "scene.json"), original);
+    QVERIFY(!document().studio_scene().analysed->scene().gloss.all_matte());
+  }
+
   void export_writes_the_full_size_image() {
     QSignalSpy done(window_.get(), &MainWindow::exportFinished);
     const QString path = folder_.filePath("relit.png");
@@ -1434,11 +1483,13 @@ class StudioTest : public QObject {
   }
 };
 
-// The functions that wait for the session's final renders, ten times slower
-// under the sanitizers than the rest: `studio_test --final-renders` runs
-// them, `studio_test --editing` everything else (tests/CMakeLists.txt: the
-// first is labelled `slow`, so CI runs it in the Release step only; the
-// session's final renders run under the sanitizers in session_test).
+// The functions that wait for the session's final renders (or, the last,
+// for two analyses and a material estimate), ten times slower under the
+// sanitizers than the rest: `studio_test --final-renders` runs them,
+// `studio_test --editing` everything else (tests/CMakeLists.txt: the first
+// is labelled `slow`, so CI runs it in the Release step only; the session's
+// final renders run under the sanitizers in session_test, the estimate in
+// specular_test).
 const QStringList kFinalRenderFunctions = {
     "the_picture_changes_when_a_light_moves",
     "solo_shows_one_light_alone_and_leaves_the_rig",
@@ -1452,6 +1503,7 @@ const QStringList kFinalRenderFunctions = {
     "dragging_an_area_lights_circle_on_the_photo_turns_it",
     "the_split_shows_the_photo_left_and_the_relit_image_right",
     "export_writes_the_full_size_image",
+    "finding_the_surfaces_that_shine_writes_and_opens_a_new_scene",
 };
 
 // QtTest's arguments, the test functions of the group asked for (one of

@@ -143,6 +143,40 @@ Image photo_as_divided(const Scene& scene, const Analysis& analysis) {
 
 }  // namespace
 
+namespace {
+
+// "cap_1", or "Stone (a material: cap_1, cap_2 and 8 more)".
+std::string estimate_name(const MaterialEstimate& m) {
+  if (m.objects.size() == 1 && m.objects[0] == m.name) return m.name;
+  std::string objects = m.objects.empty() ? std::string() : m.objects[0];
+  for (size_t i = 1; i < m.objects.size() && i < 3; ++i)
+    objects += (i + 1 == m.objects.size() ? " and " : ", ") + m.objects[i];
+  if (m.objects.size() > 3) objects += fmt::format(" and {} more", m.objects.size() - 3);
+  return fmt::format("{} (a material: {})", m.name, objects);
+}
+
+}  // namespace
+
+std::string describe_estimate(const MaterialEstimate& m) {
+  const std::string name = estimate_name(m);
+  if (m.gloss)
+    return fmt::format(
+        "{:<16} glossy: roughness {:.2f}, specular {:.2f} (its highlights explain {:.0f} % of its shading's fine "
+        "variation; {} pixels){}",
+        name, m.gloss->roughness, m.gloss->specular, 100.0f * m.explained, m.pixels,
+        m.gloss->specular >= 1.0f
+            ? "; as bright as a dielectric's get: a metal's, brighter and tinted, are not modelled"
+            : "");
+  return fmt::format("{:<16} matte: {} ({} pixels)", name, m.reason, m.pixels);
+}
+
+std::map<std::string, Gloss> with_estimates(std::map<std::string, Gloss> given,
+                                            const std::vector<MaterialEstimate>& estimates) {
+  for (const MaterialEstimate& m : estimates)
+    if (m.gloss) given[m.name] = *m.gloss;
+  return given;
+}
+
 std::vector<EstimationUnit> estimation_units(const TriangleMesh& mesh) {
   constexpr uint32_t kMixed = TriangleMesh::kNoMaterial - 1;
   const size_t objects = mesh.objects.size();

@@ -12,6 +12,7 @@
 // no predicted highlight explains at least kMinExplained of that variation.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,6 +62,15 @@ struct MaterialEstimationOptions {
 std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
                                                  const Analysis& analysis, const MaterialEstimationOptions& options,
                                                  Progress& progress);
+
+// One line on an estimate, as `relight materials` prints it: "ball glossy:
+// roughness 0.20, specular 0.47 (...)" or "floor matte: REASON (...)".
+std::string describe_estimate(const MaterialEstimate& m);
+
+// `given` (a scene's `materials`) with the estimates found glossy added
+// under their names.
+std::map<std::string, Gloss> with_estimates(std::map<std::string, Gloss> given,
+                                            const std::vector<MaterialEstimate>& estimates);
 
 // What is estimated as one: each object, but the objects made wholly of a
 // material that two or more objects and no other triangle have, taken

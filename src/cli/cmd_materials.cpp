@@ -1,7 +1,5 @@
 // relight materials: which surfaces shine, estimated from the photo, written
 // as scene.json's `materials` (src/analysis/material_estimation.h).
-#include <fmt/format.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -26,30 +24,6 @@ struct MaterialsArgs {
   size_t min_pixels = MaterialEstimationOptions{}.min_pixels;
 };
 
-// "cap_1", or "Stone (a material: cap_1, cap_2 and 8 more)".
-std::string estimate_name(const MaterialEstimate& m) {
-  if (m.objects.size() == 1 && m.objects[0] == m.name) return m.name;
-  std::string objects = m.objects[0];
-  for (size_t i = 1; i < m.objects.size() && i < 3; ++i)
-    objects += (i + 1 == m.objects.size() ? " and " : ", ") + m.objects[i];
-  if (m.objects.size() > 3) objects += fmt::format(" and {} more", m.objects.size() - 3);
-  return fmt::format("{} (a material: {})", m.name, objects);
-}
-
-void print_estimate(const MaterialEstimate& m) {
-  const std::string name = estimate_name(m);
-  if (m.gloss)
-    std::printf(
-        "%-16s glossy: roughness %.2f, specular %.2f (its highlights explain %.0f %% of its shading's fine "
-        "variation; %zu pixels)%s\n",
-        name.c_str(), m.gloss->roughness, m.gloss->specular, 100.0f * m.explained, m.pixels,
-        m.gloss->specular >= 1.0f ? "; as bright as a dielectric's get: a metal's, brighter and tinted, "
-                                    "are not modelled"
-                                  : "");
-  else
-    std::printf("%-16s matte: %s (%zu pixels)\n", name.c_str(), m.reason.c_str(), m.pixels);
-}
-
 void run_materials(const MaterialsArgs& args, Progress& progress) {
   check_output_folder(args.out);
   Scene scene = load_scene(args.scene, progress);
@@ -71,11 +45,8 @@ void run_materials(const MaterialsArgs& args, Progress& progress) {
   estimation.min_pixels = args.min_pixels;
   const std::vector<MaterialEstimate> estimates =
       estimate_materials(s.scene, *s.rays, *s.gbuffer, analysis, estimation, progress);
-  std::map<std::string, Gloss> materials = s.scene.materials;
-  for (const MaterialEstimate& m : estimates) {
-    print_estimate(m);
-    if (m.gloss) materials[m.name] = *m.gloss;
-  }
+  for (const MaterialEstimate& m : estimates) std::printf("%s\n", describe_estimate(m).c_str());
+  std::map<std::string, Gloss> materials = with_estimates(s.scene.materials, estimates);
   // The scene as given, with the materials: a camera the analysis
   // registered is its own business (relight register writes one).
   s.scene.camera = given_camera;

@@ -12,7 +12,9 @@
 #include <QStatusBar>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
+#include "analysis/material_estimation.h"
 #include "core/error.h"
 #include "gui/environment_entry.h"
 #include "gui/geometry_overlay.h"
@@ -26,6 +28,7 @@
 #include "gui/photo_view.h"
 #include "gui/task_status.h"
 #include "gui/tone_map.h"
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
 
@@ -214,6 +217,15 @@ void MainWindow::make_menus() {
                                                       tr("OpenEXR, linear (*.exr);;PNG, with the exposure (*.png)"));
     if (!path.isEmpty()) export_image(path);
   });
+  find_materials_action_ = file->addAction(tr("Find the Surfaces That &Shine…"), this, [this] {
+    const QFileInfo scene(scene_path_);
+    const QString path = QFileDialog::getSaveFileName(
+        this, tr("Save the scene with the surfaces that shine"),
+        scene.dir().filePath(scene.completeBaseName() + "_materials.json"), tr("Scenes (*.json)"));
+    if (!path.isEmpty() && maybe_keep_changes()) find_materials(path);
+  });
+  find_materials_action_->setToolTip(
+      tr("Estimate from the photo's highlights which surfaces are glossy, and how (relight materials)"));
   file->addSeparator();
   file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
 
@@ -651,11 +663,72 @@ bool MainWindow::refresh_frame() {
   return true;
 }
 
+void MainWindow::find_materials(const QString& out_path) {
+  if (!document_ || busy()) return;
+  const auto fail = [this](const QString& message) {
+    show_error(message);
+    emit materialsFound(message, 0);
+  };
+  if (scene_->preview)
+    return fail(tr("The full analysis is still running: find the surfaces that shine once it is done"));
+  namespace fs = std::filesystem;
+  const fs::path out = fs::absolute(out_path.toStdString()), scene_file = fs::absolute(scene_path_.toStdString());
+  std::error_code ignored;
+  if (fs::weakly_canonical(out, ignored) == fs::weakly_canonical(scene_file, ignored))
+    return fail(tr("%1 is the open scene: name another file for the scene with its materials").arg(out_path));
+  const std::shared_ptr<const StudioScene> scene = scene_;
+  auto estimates = std::make_shared<std::vector<MaterialEstimate>>();
+  run_task(
+      tr("Finding the surfaces that shine…"),
+      [scene, estimates, scene_file, out](Progress& progress) {
+        const AnalysedScene& a = *scene->analysed;
+        if (!a.scene().mesh.has_objects())
+          throw InputError(scene_file.string(), "/geometry",
+                           "the geometry names no objects, so no materials can be written for it (export it with "
+                           "its objects: an OBJ's `o` lines, a glTF's nodes)");
+        // A fresh analysis, as `relight materials` makes: a cached one keeps
+        // no illumination to compare the photo with.
+        const Analysis analysis = analyze(a.scene(), a.rays(), a.gbuffer(), a.analysis().options, progress);
+        MaterialEstimationOptions estimation;
+        estimation.paths_per_pixel = a.analysis().options.paths_per_pixel;
+        estimation.seed = a.analysis().options.seed;
+        *estimates = estimate_materials(a.scene(), a.rays(), a.gbuffer(), analysis, estimation, progress);
+        if (std::none_of(estimates->begin(), estimates->end(), [](const MaterialEstimate& m) { return bool(m.gloss); }))
+          return;
+        Scene given = load_scene(scene_file, progress);  // its camera as given, not as registered
+        set_materials(given, with_estimates(given.materials, *estimates));
+        write_text_atomically(out, scene_to_json(given, out.parent_path()));
+      },
+      [this, fail, estimates, out_path](const QString& error) {
+        if (!error.isEmpty())
+          return fail(error == "cancelled" ? tr("Finding the surfaces that shine was cancelled.") : error);
+        QStringList lines;
+        int found = 0;
+        for (const MaterialEstimate& m : *estimates) {
+          lines << QString::fromStdString(describe_estimate(m));
+          found += bool(m.gloss);
+        }
+        const QString heading =
+            found ? (found == 1 ? tr("One surface shines.") : tr("%1 surfaces shine.").arg(found)) +
+                        tr(" The scene with them is %1; it opens now, analysed with their highlights taken off the "
+                           "photo (Show Details says what was found on each).")
+                            .arg(QFileInfo(out_path).fileName())
+                  : tr("No surface was found to shine; nothing was written.");
+        auto* box = new QMessageBox(QMessageBox::Information, tr("relight studio"), heading, QMessageBox::Ok, this);
+        box->setDetailedText(lines.join('\n'));
+        box->setAttribute(Qt::WA_DeleteOnClose);
+        box->open();
+        statusBar()->showMessage(heading, 15000);
+        emit materialsFound({}, found);
+        if (found) open_scene(out_path, rig_path_);
+      });
+}
+
 void MainWindow::update_actions() {
   const bool open = document_ != nullptr && !busy();
   const bool has = open && selected_ >= 0;
-  for (QAction* a :
-       {save_rig_action_, save_rig_as_action_, open_rig_action_, export_action_, new_light_action_, place_tool_action_})
+  for (QAction* a : {save_rig_action_, save_rig_as_action_, open_rig_action_, export_action_, find_materials_action_,
+                     new_light_action_, place_tool_action_})
     a->setEnabled(open);
   for (QAction* a : {change_light_action_, duplicate_light_action_, solo_light_action_, delete_light_action_})
     a->setEnabled(has);

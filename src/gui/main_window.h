@@ -58,6 +58,12 @@ class MainWindow : public QMainWindow {
   // Renders the rig at full quality on a worker and writes EXR or PNG (by
   // the extension; PNG through the exposure); exportFinished follows.
   void export_image(const QString& path);
+  // Finds which surfaces of the open scene shine from its photo (`relight
+  // materials`) on a worker, writes the scene with them to `out_path` (never
+  // over the open scene) and opens it; where none is found to shine it says
+  // so and writes nothing. materialsFound follows (then sceneOpened where it
+  // opens the new scene).
+  void find_materials(const QString& out_path);
   bool busy() const { return task_.running(); }
   void cancel_task() { task_.cancel(); }
 
@@ -118,6 +124,8 @@ class MainWindow : public QMainWindow {
   void fullAnalysisDone(const QString& error);
   void openFailed(const QString& error);
   void exportFinished(const QString& error);
+  // error: empty on success; found: how many objects or materials shine.
+  void materialsFound(const QString& error, int found);
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -165,7 +173,7 @@ class MainWindow : public QMainWindow {
   LightsPanel* lights_;
   PhotoPanel* photo_panel_;
   TaskStatus* task_status_;
-  QAction *save_rig_action_, *save_rig_as_action_, *open_rig_action_, *export_action_;
+  QAction *save_rig_action_, *save_rig_as_action_, *open_rig_action_, *export_action_, *find_materials_action_;
   QAction *new_light_action_, *change_light_action_, *duplicate_light_action_, *solo_light_action_,
       *delete_light_action_, *place_tool_action_;
   QLabel* mode_label_;
