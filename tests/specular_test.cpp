@@ -229,6 +229,9 @@ TEST(EstimationUnits, PoolTheObjectsOfAMaterialTheyAloneHave) {
   };
   // Stone is the caps' alone; Wood is the table's and part of the chair.
   EXPECT_EQ(names(estimation_units(mesh)), (std::vector<std::string>{"Stone/2", "table/1", "chair/1"}));
+  std::swap(mesh.triangle_materials[4], mesh.triangle_materials[5]);  // the chair's part without one first
+  EXPECT_EQ(names(estimation_units(mesh)), (std::vector<std::string>{"Stone/2", "table/1", "chair/1"}));
+  std::swap(mesh.triangle_materials[4], mesh.triangle_materials[5]);
   mesh.triangle_materials[5] = 1;  // the chair wholly Wood too
   EXPECT_EQ(names(estimation_units(mesh)), (std::vector<std::string>{"Stone/2", "Wood/2"}));
   mesh.triangle_materials[2] = 1;  // cap_b of Wood: cap_a is Stone's only object

@@ -94,7 +94,6 @@ AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clip
     std::nth_element(brightest.begin(), at, brightest.end());
     out.bright_bound = std::max(1.0f, kBrightMargin * *at);
   }
-  out.too_bright.assign(size_t(w) * h, 0);
   std::vector<std::pair<size_t, Vec3>> at_least;  // the clipped pixels' lower bounds
   Vec3 sum = Vec3::Zero();
   size_t count = 0;
@@ -107,8 +106,6 @@ AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clip
       at_least.emplace_back(i, a.cwiseMin(out.bright_bound));
       known[i] = 0;
     } else if (a.maxCoeff() > out.bright_bound) {
-      out.too_bright[i] = 1;
-      ++out.too_bright_pixels;
       out.as_divided.emplace_back(uint32_t(i), a);
       known[i] = 0;
     } else {

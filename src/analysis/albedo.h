@@ -22,18 +22,16 @@ struct AlbedoImages {
   Image albedo_coverage;             // albedo x coverage: 0 on the background, like albedo_gt.exr
   Vec3 mean = Vec3::Constant(0.5f);  // mean over reliable pixels; the default for unseen surfaces
   size_t filled = 0;                 // pixels filled from neighbours or the mean
-  // 1 per pixel whose photo / illumination came out brighter than a surface
-  // can be (above bright_bound: the illumination is wrong there), filled.
-  std::vector<uint8_t> too_bright;
-  size_t too_bright_pixels = 0;
-  float bright_bound = 1.0f;
-  // Those pixels' photo / illumination as divided (capped at 10), for
-  // re-lighting: the model's light is wrong there by a factor (a side face
+  // The pixels whose photo / illumination came out brighter than a surface
+  // can be (above bright_bound: the illumination is wrong there), filled in
+  // `albedo`; here their index and that photo / illumination (capped at 10),
+  // for re-lighting: the model's light is wrong there by a factor (a side face
   // the photo does not show, a facet's own shadow), and the new light,
   // rendered through the same model, is taken as wrong by the same factor.
   // The unchanged rig then gives the photo back, and a new one changes it by
   // the ratio of new to old light (photo_layers).
   std::vector<std::pair<uint32_t, Vec3>> as_divided;
+  float bright_bound = 1.0f;
   // 1 per pixel near an edge of the illumination that the photo shows a few
   // pixels away (IlluminationAlignment; with align_edges, the illumination
   // divided by there was moved onto the photo's edges); empty: not looked for.

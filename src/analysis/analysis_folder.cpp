@@ -116,8 +116,8 @@ std::vector<float> unreliable_marks(const Analysis& a) {
   for (size_t i = 0; i < a.albedo.edge_mismatch.size() && i < marks.size(); ++i) marks[i] = a.albedo.edge_mismatch[i];
   for (size_t i = 0; i < a.highlights.size() && i < marks.size(); ++i)
     marks[i] = std::max<float>(marks[i], a.highlights[i]);
-  for (size_t i = 0; i < a.albedo.too_bright.size() && i < marks.size(); ++i)
-    marks[i] = std::max<float>(marks[i], a.albedo.too_bright[i]);
+  for (const auto& [i, albedo] : a.albedo.as_divided)
+    if (i < marks.size()) marks[i] = 1.0f;
   return marks;
 }
 

@@ -469,11 +469,11 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     result.residual = residual_of(photo, result.albedo.albedo, back, result.coverage);
   }
   report_edge_offset(scene, result.albedo, result.coverage, options.align_edges);
-  if (result.albedo.too_bright_pixels)
+  if (!result.albedo.as_divided.empty())
     spdlog::info(
         "{} pixels brighter than a surface can be (albedo over {:.2f}): filled from their surface, marked "
         "in unreliable.exr",
-        result.albedo.too_bright_pixels, result.albedo.bright_bound);
+        result.albedo.as_divided.size(), result.albedo.bright_bound);
   if (result.residual > kLargeResidual)
     spdlog::warn(
         "{}: albedo x illumination rendered back is {:.1f} % from the photo: the lights, probes or "

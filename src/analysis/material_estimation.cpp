@@ -8,6 +8,7 @@
 
 #include "analysis/probe_exposure.h"
 #include "analysis/strategy.h"
+#include "core/error.h"
 #include "render/specular.h"
 
 namespace relight {
@@ -141,10 +142,6 @@ Image photo_as_divided(const Scene& scene, const Analysis& analysis) {
   return photo;
 }
 
-}  // namespace
-
-namespace {
-
 // "cap_1", or "Stone (a material: cap_1, cap_2 and 8 more)".
 std::string estimate_name(const MaterialEstimate& m) {
   if (m.objects.size() == 1 && m.objects[0] == m.name) return m.name;
@@ -178,29 +175,30 @@ std::map<std::string, Gloss> with_estimates(std::map<std::string, Gloss> given,
 }
 
 std::vector<EstimationUnit> estimation_units(const TriangleMesh& mesh) {
-  constexpr uint32_t kMixed = TriangleMesh::kNoMaterial - 1;
-  const size_t objects = mesh.objects.size();
-  // Each object's one material (kNoMaterial: none, kMixed: several), and
-  // each material's objects, and whether all of them are wholly it.
-  std::vector<uint32_t> material_of(objects, kMixed + 1);  // unset
+  // Each object's one material: kNoMaterial where it has none, or several.
+  constexpr uint32_t kNone = TriangleMesh::kNoMaterial;
+  const size_t objects = mesh.objects.size(), materials = mesh.has_materials() ? mesh.materials.size() : 0;
+  std::vector<std::optional<uint32_t>> material_of(objects);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-    uint32_t& m = material_of[mesh.triangle_objects[t]];
-    const uint32_t own = mesh.has_materials() ? mesh.triangle_materials[t] : TriangleMesh::kNoMaterial;
-    m = m == kMixed + 1 || m == own ? own : kMixed;
+    std::optional<uint32_t>& m = material_of[mesh.triangle_objects[t]];
+    const uint32_t own = materials ? mesh.triangle_materials[t] : kNone;
+    m = !m || *m == own ? own : kNone;
   }
-  std::vector<uint32_t> sharing(mesh.materials.size(), 0);
-  std::vector<uint8_t> whole(mesh.materials.size(), 1);
-  for (size_t t = 0; t < mesh.triangles.size() && mesh.has_materials(); ++t) {
-    const uint32_t m = mesh.triangle_materials[t];
-    if (m < mesh.materials.size() && material_of[mesh.triangle_objects[t]] != m) whole[m] = 0;
-  }
+  // A material is estimated as one where two or more objects are wholly
+  // of it and no other triangle has it.
+  std::vector<uint32_t> objects_of(materials, 0);
+  std::vector<uint8_t> elsewhere(materials, 0);
   for (size_t o = 0; o < objects; ++o)
-    if (material_of[o] < mesh.materials.size()) ++sharing[material_of[o]];
+    if (material_of[o] && *material_of[o] < materials) ++objects_of[*material_of[o]];
+  for (size_t t = 0; t < mesh.triangles.size() && materials; ++t) {
+    const uint32_t m = mesh.triangle_materials[t];
+    if (m < materials && material_of[mesh.triangle_objects[t]] != m) elsewhere[m] = 1;
+  }
   std::vector<EstimationUnit> units;
-  std::vector<int32_t> unit_of_material(mesh.materials.size(), -1);
+  std::vector<int32_t> unit_of_material(materials, -1);
   for (uint32_t o = 0; o < objects; ++o) {
-    const uint32_t m = material_of[o];
-    if (m >= mesh.materials.size() || sharing[m] < 2 || !whole[m]) {
+    const uint32_t m = material_of[o].value_or(kNone);
+    if (m >= materials || objects_of[m] < 2 || elsewhere[m]) {
       units.push_back({mesh.objects[o], {o}});
       continue;
     }
@@ -211,6 +209,13 @@ std::vector<EstimationUnit> estimation_units(const TriangleMesh& mesh) {
     units[size_t(unit_of_material[m])].objects.push_back(o);
   }
   return units;
+}
+
+void require_named_objects(const Scene& scene) {
+  if (!scene.mesh.has_objects())
+    throw InputError(scene.path.string(), "/geometry",
+                     "the geometry names no objects, so no materials can be written for it (export it with its "
+                     "objects: an OBJ's `o` lines, a glTF's nodes)");
 }
 
 HighlightFit fit_highlight(const std::vector<float>& dx, const std::vector<float>& dy, float max_scale) {

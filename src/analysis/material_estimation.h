@@ -53,6 +53,10 @@ struct MaterialEstimationOptions {
   size_t min_pixels = 100;
 };
 
+// Throws InputError where the geometry names no objects (materials are
+// written by name): before the analysis the estimate needs.
+void require_named_objects(const Scene& scene);
+
 // Estimates the objects of `scene` that `scene.materials` leaves matte, from
 // the photo and `analysis` (the scene analysed with them matte, through the
 // camera `gbuffer` was made with). One estimate per object the photo shows

@@ -31,10 +31,7 @@ void run_materials(const MaterialsArgs& args, Progress& progress) {
   check_output_is_not_an_input(fs::absolute(args.out));  // before the work, not after it
   const Camera given_camera = scene.camera;
   LoadedScene s = prepare_for_analysis(std::move(scene), args.options, progress, CameraUse::for_analysis);
-  if (!s.scene.mesh.has_objects())
-    throw InputError(args.scene, "/geometry",
-                     "the geometry names no objects, so no materials can be written for it (export it with its "
-                     "objects: an OBJ's `o` lines, a glTF's nodes)");
+  require_named_objects(s.scene);
   warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
   AnalysisOptions options = args.options;
   options.strategy = default_strategy(s.scene);

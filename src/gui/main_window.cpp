@@ -682,10 +682,7 @@ void MainWindow::find_materials(const QString& out_path) {
       tr("Finding the surfaces that shine…"),
       [scene, estimates, scene_file, out](Progress& progress) {
         const AnalysedScene& a = *scene->analysed;
-        if (!a.scene().mesh.has_objects())
-          throw InputError(scene_file.string(), "/geometry",
-                           "the geometry names no objects, so no materials can be written for it (export it with "
-                           "its objects: an OBJ's `o` lines, a glTF's nodes)");
+        require_named_objects(a.scene());
         // A fresh analysis, as `relight materials` makes: a cached one keeps
         // no illumination to compare the photo with.
         const Analysis analysis = analyze(a.scene(), a.rays(), a.gbuffer(), a.analysis().options, progress);
