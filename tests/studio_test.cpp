@@ -25,6 +25,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "analysis/camera_registration.h"
 #include "gui/colour_temperature.h"
 #include "gui/environment_entry.h"
 #include "gui/geometry_overlay.h"
@@ -52,6 +53,12 @@ namespace fs = std::filesystem;
                                       .arg(double(b), 0, 'g', 9)))
 
 namespace {
+
+std::string file_text(const fs::path& file) {
+  std::ostringstream text;
+  text << std::ifstream(file).rdbuf();
+  return text.str();
+}
 
 // Cheap analysis and refinement: the tests check the wiring, not the quality.
 StudioOptions quick_options() {
@@ -1432,12 +1439,7 @@ class StudioTest : public QObject {
     nlohmann::json scene = nlohmann::json::parse(std::ifstream(copy / "scene.json"));
     scene.erase("materials");
     std::ofstream(copy / "scene.json") << scene.dump(2);
-    const auto read_text = [](const fs::path& file) {
-      std::ostringstream text;
-      text << std::ifstream(file).rdbuf();
-      return text.str();
-    };
-    const std::string original = read_text(copy / "scene.json");
+    const std::string original = file_text(copy / "scene.json");
 
     QSignalSpy found(window_.get(), &MainWindow::materialsFound);
     window_->find_materials(folder_.filePath("room_materials.json"));
@@ -1465,8 +1467,57 @@ class StudioTest : public QObject {
     const nlohmann::json written = nlohmann::json::parse(std::ifstream(out));
     QVERIFY(written["materials"].contains("ball"));
     QVERIFY(!written["materials"].contains("back_wall"));
-    QCOMPARE(read_text(copy / "scene.json"), original);
+    QCOMPARE(file_text(copy / "scene.json"), original);
     QVERIFY(!document().studio_scene().analysed->scene().gloss.all_matte());
+  }
+
+  // The example room with its camera turned 1 degree: the scene matched to
+  // the photo has the camera back (registration) and is opened; the scene
+  // it came from is unchanged, and it is never the output.
+  void matching_the_scene_to_the_photo_writes_and_opens_it() {
+    const fs::path copy = fs::path(folder_.path().toStdString()) / "turned";
+    fs::remove_all(copy);
+    fs::create_directories(copy);
+    const fs::path room = fs::path(RELIGHT_SOURCE_DIR) / "examples/room";
+    for (const char* f : {"scene.json", "photo.exr", "geometry.obj"}) fs::copy_file(room / f, copy / f);
+    nlohmann::json scene = nlohmann::json::parse(std::ifstream(copy / "scene.json"));
+    const auto vec = [](const nlohmann::json& v) {
+      return Vec3(v[0].get<float>(), v[1].get<float>(), v[2].get<float>());
+    };
+    const Vec3 position = vec(scene["camera"]["position"]), up = vec(scene["camera"]["up"]).normalized();
+    const Vec3 turned =
+        position + Eigen::AngleAxisf(1.0f * kPi / 180.0f, up) * (vec(scene["camera"]["look_at"]) - position);
+    scene["camera"]["look_at"] = {turned.x(), turned.y(), turned.z()};
+    std::ofstream(copy / "scene.json") << scene.dump(2);
+    const std::string original = file_text(copy / "scene.json");
+    const Scene truth = load_scene(room / "scene.json");
+    const int w = truth.camera.width(), h = truth.camera.height();
+    const float off_before =
+        view_difference_px(truth.camera.spec(), load_scene(copy / "scene.json").camera.spec(), w, h);
+    QVERIFY(off_before > 5.0f);
+
+    QSignalSpy opened(window_.get(), &MainWindow::sceneOpened);
+    window_->open_scene(QString::fromStdString((copy / "scene.json").string()));
+    QVERIFY(opened.wait(240000));
+    QSignalSpy matched(window_.get(), &MainWindow::sceneMatched);
+    window_->match_scene(QString::fromStdString((copy / "scene.json").string()));
+    QVERIFY(matched.wait(1000) || matched.size() == 1);
+    QVERIFY(matched.at(0).at(0).toString().contains("is the open scene"));
+
+    const fs::path out = copy / "scene_matched.json";
+    window_->match_scene(QString::fromStdString(out.string()));
+    QVERIFY(matched.wait(240000));
+    QCOMPARE(matched.at(1).at(0).toString(), QString());
+    if (const auto boxes = window_->findChildren<QMessageBox*>(); !boxes.empty())
+      keep_picture("scene_matched", *boxes.back());
+    QVERIFY(opened.wait(240000));
+    const float off_after = view_difference_px(truth.camera.spec(), load_scene(out).camera.spec(), w, h);
+    std::printf("[ figures  ] the camera turned 1 degree: its view %.2f px off before matching, %.2f px after\n",
+                off_before, off_after);
+    QVERIFY(off_after < 1.0f);
+    QCOMPARE(file_text(copy / "scene.json"), original);
+    QCOMPARE(view_difference_px(truth.camera.spec(), document().studio_scene().analysed->scene().camera.spec(), w, h),
+             off_after);
   }
 
   void export_writes_the_full_size_image() {
@@ -1504,6 +1555,7 @@ const QStringList kFinalRenderFunctions = {
     "the_split_shows_the_photo_left_and_the_relit_image_right",
     "export_writes_the_full_size_image",
     "finding_the_surfaces_that_shine_writes_and_opens_a_new_scene",
+    "matching_the_scene_to_the_photo_writes_and_opens_it",
 };
 
 // QtTest's arguments, the test functions of the group asked for (one of

@@ -290,6 +290,18 @@ std::string RegistrationResult::what_moved(int width, int height) const {
       turned_deg(), 100.0f * moved_m(), before.vfov_deg, after.vfov_deg, 100.0f * fov_change(), shift.x(), shift.y());
 }
 
+std::vector<std::string> describe_registration(const RegistrationResult& r, int width, int height) {
+  if (r.mismatch_after_px >= r.mismatch_before_px)
+    return {fmt::format(
+        "camera unchanged: no camera near it matches the photo's edges better (edge mismatch {:.3f} px); if it is off "
+        "by more than ~2 degrees, correct it by hand first",
+        r.mismatch_before_px)};
+  return {"camera " + r.what_moved(width, height),
+          fmt::format("edge mismatch {:.3f} -> {:.3f} px (mean distance of {} geometry edge pixels to the photo's "
+                      "edges, capped at 8 px)",
+                      r.mismatch_before_px, r.mismatch_after_px, r.edge_points)};
+}
+
 float view_difference_px(const CameraSpec& a, const CameraSpec& b, int width, int height) {
   const Camera ca(a, width, height), cb(b, width, height);
   float most = 0.0f;

@@ -1,5 +1,6 @@
 #include "analysis/fit.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <Eigen/Dense>
@@ -447,6 +448,32 @@ class LightingFit {
 };
 
 }  // namespace
+
+std::vector<std::string> describe_fit(const FitResult& fit) {
+  const auto change = [](const std::string& what, const Vec3& before, const Vec3& after, const std::string& source) {
+    return fmt::format("{} {:.4g} {:.4g} {:.4g} -> {:.4g} {:.4g} {:.4g} ({})", what, before.x(), before.y(), before.z(),
+                       after.x(), after.y(), after.z(), source);
+  };
+  std::vector<std::string> lines;
+  for (const FittedLight& l : fit.lights)
+    lines.push_back(change(fmt::format("{:<16} emission", l.name), l.emission_before, l.emission_after, l.source));
+  lines.push_back(
+      change(fmt::format("{:<16}", "background"), fit.background_before, fit.background_after, fit.background_source));
+  for (const PlacedLight& p : fit.placement) {
+    const float moved = p.moved_m(), turned = p.turned_deg();
+    std::string line = fmt::format("{:<16}", p.name);
+    if (moved > 0.0f)
+      line += fmt::format(" moved {:.3g} m to {:.4g} {:.4g} {:.4g}", moved, p.position_after.x(), p.position_after.y(),
+                          p.position_after.z());
+    if (turned > 0.0f)
+      line += fmt::format(" turned {:.3g} degrees to {:.4g} {:.4g} {:.4g}", turned, p.direction_after.x(),
+                          p.direction_after.y(), p.direction_after.z());
+    if (moved == 0.0f && turned == 0.0f) line += " stays where it was";
+    lines.push_back(line + fmt::format(" (shadow mismatch {:.4f} -> {:.4f})", p.objective_before, p.objective_after));
+  }
+  lines.push_back(fmt::format("{} shadow-edge pixel pairs", fit.edge_pairs));
+  return lines;
+}
 
 void set_emission(Light& light, const Vec3& emission) {
   const float colour_luminance = std::max(1e-6f, luminance(light.color));

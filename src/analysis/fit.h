@@ -70,6 +70,11 @@ struct FitResult {
 FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,
                        Progress& progress);
 
+// What `relight fit` prints: each light's emission before and after and
+// where it came from, the background's, where each placed light moved or
+// turned to, and the shadow-edge pixel pairs used (one line each).
+std::vector<std::string> describe_fit(const FitResult& fit);
+
 // Sets a light's colour and power (or irradiance) to give `emission`, keeping
 // the luminance of its colour as the user chose it.
 void set_emission(Light& light, const Vec3& emission);

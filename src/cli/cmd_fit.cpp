@@ -36,26 +36,7 @@ void run_fit(const FitArgs& args, Progress& progress) {
   const FitResult fit = fit_lighting(s.scene, *s.rays, *s.gbuffer, options, progress);
   const fs::path out = fs::absolute(args.out);
   write_text_atomically(out, scene_to_json(fit.scene, out.parent_path()));
-  for (const auto& l : fit.lights)
-    std::printf("%-16s emission %.4g %.4g %.4g -> %.4g %.4g %.4g (%s)\n", l.name.c_str(), l.emission_before.x(),
-                l.emission_before.y(), l.emission_before.z(), l.emission_after.x(), l.emission_after.y(),
-                l.emission_after.z(), l.source.c_str());
-  std::printf("%-16s %.4g %.4g %.4g -> %.4g %.4g %.4g (%s)\n", "background", fit.background_before.x(),
-              fit.background_before.y(), fit.background_before.z(), fit.background_after.x(), fit.background_after.y(),
-              fit.background_after.z(), fit.background_source.c_str());
-  for (const auto& p : fit.placement) {
-    const float moved = p.moved_m(), turned = p.turned_deg();
-    std::printf("%-16s", p.name.c_str());
-    if (moved > 0.0f)
-      std::printf(" moved %.3g m to %.4g %.4g %.4g", moved, p.position_after.x(), p.position_after.y(),
-                  p.position_after.z());
-    if (turned > 0.0f)
-      std::printf(" turned %.3g degrees to %.4g %.4g %.4g", turned, p.direction_after.x(), p.direction_after.y(),
-                  p.direction_after.z());
-    if (moved == 0.0f && turned == 0.0f) std::printf(" stays where it was");
-    std::printf(" (shadow mismatch %.4f -> %.4f)\n", p.objective_before, p.objective_after);
-  }
-  std::printf("%zu shadow-edge pixel pairs\n", fit.edge_pairs);
+  for (const std::string& line : describe_fit(fit)) std::printf("%s\n", line.c_str());
   std::printf("fitted scene written to %s\n", args.out.c_str());
 }
 

@@ -15,18 +15,8 @@ namespace fs = std::filesystem;
 RegistrationResult register_and_report(Scene& scene, const RayScene& rays, const RegistrationOptions& options,
                                        Progress& progress) {
   const RegistrationResult r = register_camera(scene, rays, options, progress);
-  if (r.mismatch_after_px >= r.mismatch_before_px) {
-    std::printf(
-        "camera unchanged: no camera near it matches the photo's edges better (edge mismatch %.3f px); if it "
-        "is off by more than ~2 degrees, correct it by hand first\n",
-        r.mismatch_before_px);
-    return r;
-  }
-  std::printf("camera %s\n", r.what_moved(scene.camera.width(), scene.camera.height()).c_str());
-  std::printf(
-      "edge mismatch %.3f -> %.3f px (mean distance of %zu geometry edge pixels to the photo's edges, capped "
-      "at 8 px)\n",
-      r.mismatch_before_px, r.mismatch_after_px, r.edge_points);
+  for (const std::string& line : describe_registration(r, scene.camera.width(), scene.camera.height()))
+    std::printf("%s\n", line.c_str());
   return r;
 }
 

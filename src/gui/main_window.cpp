@@ -14,6 +14,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "analysis/camera_registration.h"
+#include "analysis/fit.h"
 #include "analysis/material_estimation.h"
 #include "core/error.h"
 #include "gui/environment_entry.h"
@@ -226,6 +228,16 @@ void MainWindow::make_menus() {
   });
   find_materials_action_->setToolTip(
       tr("Estimate from the photo's highlights which surfaces are glossy, and how (relight materials)"));
+  match_scene_action_ = file->addAction(tr("&Match the Scene to the Photo…"), this, [this] {
+    const QFileInfo scene(scene_path_);
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save the scene matched to the photo"),
+                                                      scene.dir().filePath(scene.completeBaseName() + "_matched.json"),
+                                                      tr("Scenes (*.json)"));
+    if (!path.isEmpty() && maybe_keep_changes()) match_scene(path);
+  });
+  match_scene_action_->setToolTip(
+      tr("Register the camera to the photo's edges, then fit the lights' power and colour and move them to where "
+         "their shadows fall (relight fit --register --refine-placement)"));
   file->addSeparator();
   file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
 
@@ -669,13 +681,10 @@ void MainWindow::find_materials(const QString& out_path) {
     show_error(message);
     emit materialsFound(message, 0);
   };
-  if (scene_->preview)
-    return fail(tr("The full analysis is still running: find the surfaces that shine once it is done"));
+  if (const QString refusal = refuse_to_write_scene(out_path, tr("find the surfaces that shine")); !refusal.isEmpty())
+    return fail(refusal);
   namespace fs = std::filesystem;
   const fs::path out = fs::absolute(out_path.toStdString()), scene_file = fs::absolute(scene_path_.toStdString());
-  std::error_code ignored;
-  if (fs::weakly_canonical(out, ignored) == fs::weakly_canonical(scene_file, ignored))
-    return fail(tr("%1 is the open scene: name another file for the scene with its materials").arg(out_path));
   const std::shared_ptr<const StudioScene> scene = scene_;
   auto estimates = std::make_shared<std::vector<MaterialEstimate>>();
   run_task(
@@ -711,13 +720,83 @@ void MainWindow::find_materials(const QString& out_path) {
                            "photo (Show Details says what was found on each).")
                             .arg(QFileInfo(out_path).fileName())
                   : tr("No surface was found to shine; nothing was written.");
-        auto* box = new QMessageBox(QMessageBox::Information, tr("relight studio"), heading, QMessageBox::Ok, this);
-        box->setDetailedText(lines.join('\n'));
-        box->setAttribute(Qt::WA_DeleteOnClose);
-        box->open();
-        statusBar()->showMessage(heading, 15000);
+        report(heading, lines);
         emit materialsFound({}, found);
         if (found) open_scene(out_path, rig_path_);
+      });
+}
+
+QString MainWindow::refuse_to_write_scene(const QString& out_path, const QString& doing) const {
+  if (scene_->preview) return tr("The full analysis is still running: %1 once it is done").arg(doing);
+  namespace fs = std::filesystem;
+  std::error_code ignored;
+  if (fs::weakly_canonical(fs::absolute(out_path.toStdString()), ignored) ==
+      fs::weakly_canonical(fs::absolute(scene_path_.toStdString()), ignored))
+    return tr("%1 is the open scene: name another file for the scene to write").arg(out_path);
+  return {};
+}
+
+void MainWindow::report(const QString& heading, const QStringList& lines) {
+  auto* box = new QMessageBox(QMessageBox::Information, tr("relight studio"), heading, QMessageBox::Ok, this);
+  box->setDetailedText(lines.join('\n'));
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->open();
+  statusBar()->showMessage(heading, 15000);
+}
+
+void MainWindow::match_scene(const QString& out_path) {
+  if (!document_ || busy()) return;
+  const auto fail = [this](const QString& message) {
+    show_error(message);
+    emit sceneMatched(message);
+  };
+  if (const QString refusal = refuse_to_write_scene(out_path, tr("match the scene to the photo")); !refusal.isEmpty())
+    return fail(refusal);
+  namespace fs = std::filesystem;
+  const fs::path out = fs::absolute(out_path.toStdString()), scene_file = fs::absolute(scene_path_.toStdString());
+  const AnalysisOptions analysis = scene_->analysed->analysis().options;
+  struct Matched {
+    QStringList lines;  // what `relight fit --register --refine-placement` prints
+    QString camera = tr("the camera kept as given");
+    int lights_moved = 0;
+  };
+  auto matched = std::make_shared<Matched>();
+  run_task(
+      tr("Matching the scene to the photo…"),
+      [scene_file, out, analysis, matched](Progress& progress) {
+        Scene scene = load_scene(scene_file, progress);  // its camera as given, not as an analysis registered it
+        const RayScene rays(scene.mesh);
+        const int width = scene.camera.width(), height = scene.camera.height();
+        try {
+          const RegistrationResult r = register_camera(scene, rays, {}, progress);
+          for (const std::string& line : describe_registration(r, width, height))
+            matched->lines << QString::fromStdString(line);
+          if (r.mismatch_after_px < r.mismatch_before_px)
+            matched->camera = tr("the camera moved %1 px on the photo")
+                                  .arg(double(view_difference_px(r.before, r.after, width, height)), 0, 'f', 1);
+        } catch (const InputError& e) {  // too few edges, or a match beyond the range: reported, not "fixed"
+          matched->lines << tr("camera kept as given: %1").arg(QString::fromStdString(e.what()));
+        }
+        FitOptions fit;
+        fit.seed = analysis.seed;
+        fit.refine_placement = true;
+        const FitResult fitted = fit_lighting(scene, rays, scene_gbuffer(scene, rays, analysis), fit, progress);
+        for (const std::string& line : describe_fit(fitted)) matched->lines << QString::fromStdString(line);
+        matched->lights_moved =
+            int(std::count_if(fitted.placement.begin(), fitted.placement.end(),
+                              [](const PlacedLight& p) { return p.moved_m() > 0.0f || p.turned_deg() > 0.0f; }));
+        write_text_atomically(out, scene_to_json(fitted.scene, out.parent_path()));
+      },
+      [this, fail, matched, out_path](const QString& error) {
+        if (!error.isEmpty())
+          return fail(error == "cancelled" ? tr("Matching the scene to the photo was cancelled.") : error);
+        report(tr("The scene matched to the photo is %1: %2, %3. It opens now (Show Details says what was fitted).")
+                   .arg(QFileInfo(out_path).fileName(), matched->camera,
+                        matched->lights_moved ? tr("%n light(s) moved", "", matched->lights_moved)
+                                              : tr("the lights where they were")),
+               matched->lines);
+        emit sceneMatched({});
+        open_scene(out_path, rig_path_);
       });
 }
 
@@ -725,7 +804,7 @@ void MainWindow::update_actions() {
   const bool open = document_ != nullptr && !busy();
   const bool has = open && selected_ >= 0;
   for (QAction* a : {save_rig_action_, save_rig_as_action_, open_rig_action_, export_action_, find_materials_action_,
-                     new_light_action_, place_tool_action_})
+                     match_scene_action_, new_light_action_, place_tool_action_})
     a->setEnabled(open);
   for (QAction* a : {change_light_action_, duplicate_light_action_, solo_light_action_, delete_light_action_})
     a->setEnabled(has);

@@ -64,6 +64,13 @@ class MainWindow : public QMainWindow {
   // so and writes nothing. materialsFound follows (then sceneOpened where it
   // opens the new scene).
   void find_materials(const QString& out_path);
+  // Matches the open scene to its photo (`relight fit --register
+  // --refine-placement`) on a worker: registers the camera to the photo's
+  // edges (a match out of range is reported and the camera kept), fits the
+  // lights' power and colour and the background, moves the lights to where
+  // their shadows fall, writes the scene so matched to `out_path` (never over
+  // the open scene) and opens it. sceneMatched follows (then sceneOpened).
+  void match_scene(const QString& out_path);
   bool busy() const { return task_.running(); }
   void cancel_task() { task_.cancel(); }
 
@@ -126,6 +133,7 @@ class MainWindow : public QMainWindow {
   void exportFinished(const QString& error);
   // error: empty on success; found: how many objects or materials shine.
   void materialsFound(const QString& error, int found);
+  void sceneMatched(const QString& error);  // empty on success
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -142,6 +150,13 @@ class MainWindow : public QMainWindow {
   // lights, where it has any.
   void note_animation(const Rig& rig);
   SessionOptions session_options_for(const StudioScene& scene) const;
+  // Why a scene made from the open one cannot be written to `out_path` now
+  // (the full analysis still running, or the open scene named as the
+  // output), `doing` what is asked for; empty where it can.
+  QString refuse_to_write_scene(const QString& out_path, const QString& doing) const;
+  // Says what was found (a message box whose details are `lines`, and the
+  // status bar) after a scene was made from the open one.
+  void report(const QString& heading, const QStringList& lines);
   // Analyses the open scene in full on a worker and puts it in the
   // preview's place under the same document: the design, the selection and
   // the undo history carry over.
@@ -173,7 +188,8 @@ class MainWindow : public QMainWindow {
   LightsPanel* lights_;
   PhotoPanel* photo_panel_;
   TaskStatus* task_status_;
-  QAction *save_rig_action_, *save_rig_as_action_, *open_rig_action_, *export_action_, *find_materials_action_;
+  QAction *save_rig_action_, *save_rig_as_action_, *open_rig_action_, *export_action_, *find_materials_action_,
+      *match_scene_action_;
   QAction *new_light_action_, *change_light_action_, *duplicate_light_action_, *solo_light_action_,
       *delete_light_action_, *place_tool_action_;
   QLabel* mode_label_;
