@@ -1473,7 +1473,8 @@ class StudioTest : public QObject {
 
   // The example room with its camera turned 1 degree: the scene matched to
   // the photo has the camera back (registration) and is opened; the scene
-  // it came from is unchanged, and it is never the output.
+  // it came from is unchanged, and it is never the output. Matched again,
+  // the camera stays.
   void matching_the_scene_to_the_photo_writes_and_opens_it() {
     const fs::path copy = fs::path(folder_.path().toStdString()) / "turned";
     fs::remove_all(copy);
@@ -1511,6 +1512,8 @@ class StudioTest : public QObject {
     if (const auto boxes = window_->findChildren<QMessageBox*>(); !boxes.empty())
       keep_picture("scene_matched", *boxes.back());
     QVERIFY(opened.wait(240000));
+    show_converged_frame();
+    keep_picture("scene_matched_opened", *window_);
     const float off_after = view_difference_px(truth.camera.spec(), load_scene(out).camera.spec(), w, h);
     std::printf("[ figures  ] the camera turned 1 degree: its view %.2f px off before matching, %.2f px after\n",
                 off_before, off_after);
@@ -1518,6 +1521,13 @@ class StudioTest : public QObject {
     QCOMPARE(file_text(copy / "scene.json"), original);
     QCOMPARE(view_difference_px(truth.camera.spec(), document().studio_scene().analysed->scene().camera.spec(), w, h),
              off_after);
+
+    // Matched again, the camera now right is kept as it is, not nudged.
+    const fs::path again = copy / "scene_matched_again.json";
+    window_->match_scene(QString::fromStdString(again.string()));
+    QVERIFY(matched.wait(240000));
+    QCOMPARE(matched.at(2).at(0).toString(), QString());
+    QVERIFY(view_difference_px(load_scene(out).camera.spec(), load_scene(again).camera.spec(), w, h) < 0.01f);
   }
 
   void export_writes_the_full_size_image() {

@@ -373,6 +373,11 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
 
 namespace relight {
 
+bool visibly_better(const RegistrationResult& r, int width, int height) {
+  return view_difference_px(r.before, r.after, width, height) > kVisiblyOffPx &&
+         r.mismatch_after_px <= (1.0f - kVisiblyBetterShare) * r.mismatch_before_px;
+}
+
 std::optional<CameraSpec> register_when_off(Scene& scene, const RayScene& rays, Progress& progress) {
   const int w = scene.camera.width(), h = scene.camera.height();
   RegistrationResult r;
@@ -386,8 +391,7 @@ std::optional<CameraSpec> register_when_off(Scene& scene, const RayScene& rays, 
     return std::nullopt;
   }
   const float off_px = view_difference_px(r.before, r.after, w, h);
-  const bool better = r.mismatch_after_px <= (1.0f - kVisiblyBetterShare) * r.mismatch_before_px;
-  if (off_px <= kVisiblyOffPx || !better) {
+  if (!visibly_better(r, w, h)) {
     scene.camera = Camera(r.before, w, h);
     spdlog::info(
         "camera: the photo's edges meet the geometry's (edge mismatch {:.2f} px; a registered camera would "

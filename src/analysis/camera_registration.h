@@ -98,6 +98,8 @@ constexpr float kVisiblyOffPx = 1.5f;
 // one moved by the edge fit's noise gains a few percent (a 320 x 240
 // photo's exact camera: its view moved 2 px, its mismatch 0.90 -> 0.88 px).
 constexpr float kVisiblyBetterShare = 0.1f;
+// Whether the registered camera is worth taking by those two tests.
+bool visibly_better(const RegistrationResult& r, int width, int height);
 std::optional<CameraSpec> register_when_off(Scene& scene, const RayScene& rays, Progress& progress);
 
 }  // namespace relight

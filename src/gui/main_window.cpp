@@ -769,11 +769,19 @@ void MainWindow::match_scene(const QString& out_path) {
         const int width = scene.camera.width(), height = scene.camera.height();
         try {
           const RegistrationResult r = register_camera(scene, rays, {}, progress);
-          for (const std::string& line : describe_registration(r, width, height))
-            matched->lines << QString::fromStdString(line);
-          if (r.mismatch_after_px < r.mismatch_before_px)
-            matched->camera = tr("the camera moved %1 px on the photo")
-                                  .arg(double(view_difference_px(r.before, r.after, width, height)), 0, 'f', 1);
+          const float moved_px = view_difference_px(r.before, r.after, width, height);
+          if (visibly_better(r, width, height)) {
+            for (const std::string& line : describe_registration(r, width, height))
+              matched->lines << QString::fromStdString(line);
+            matched->camera = tr("the camera moved %1 px on the photo").arg(double(moved_px), 0, 'f', 1);
+          } else {  // as an analysis does: a camera already right is not nudged by the edge fit's noise
+            scene.camera = Camera(r.before, width, height);
+            matched->lines << tr("camera kept as given: the photo's edges meet the geometry's (edge mismatch %1 px; a "
+                                 "registered camera would see %2 px from it, its edge mismatch %3 px)")
+                                  .arg(r.mismatch_before_px, 0, 'f', 2)
+                                  .arg(double(moved_px), 0, 'f', 2)
+                                  .arg(r.mismatch_after_px, 0, 'f', 2);
+          }
         } catch (const InputError& e) {  // too few edges, or a match beyond the range: reported, not "fixed"
           matched->lines << tr("camera kept as given: %1").arg(QString::fromStdString(e.what()));
         }
