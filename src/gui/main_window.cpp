@@ -14,8 +14,6 @@
 #include <cmath>
 #include <filesystem>
 
-#include "analysis/camera_registration.h"
-#include "analysis/fit.h"
 #include "analysis/material_estimation.h"
 #include "core/error.h"
 #include "gui/environment_entry.h"
@@ -28,6 +26,7 @@
 #include "gui/lights_panel.h"
 #include "gui/photo_panel.h"
 #include "gui/photo_view.h"
+#include "gui/scenes_from_photo.h"
 #include "gui/task_status.h"
 #include "gui/tone_map.h"
 #include "io/atomic_file.h"
@@ -690,20 +689,7 @@ void MainWindow::find_materials(const QString& out_path) {
   run_task(
       tr("Finding the surfaces that shine…"),
       [scene, estimates, scene_file, out](Progress& progress) {
-        const AnalysedScene& a = *scene->analysed;
-        require_named_objects(a.scene());
-        // A fresh analysis, as `relight materials` makes: a cached one keeps
-        // no illumination to compare the photo with.
-        const Analysis analysis = analyze(a.scene(), a.rays(), a.gbuffer(), a.analysis().options, progress);
-        MaterialEstimationOptions estimation;
-        estimation.paths_per_pixel = a.analysis().options.paths_per_pixel;
-        estimation.seed = a.analysis().options.seed;
-        *estimates = estimate_materials(a.scene(), a.rays(), a.gbuffer(), analysis, estimation, progress);
-        if (std::none_of(estimates->begin(), estimates->end(), [](const MaterialEstimate& m) { return bool(m.gloss); }))
-          return;
-        Scene given = load_scene(scene_file, progress);  // its camera as given, not as registered
-        set_materials(given, with_estimates(given.materials, *estimates));
-        write_text_atomically(out, scene_to_json(given, out.parent_path()));
+        *estimates = write_scene_with_materials(*scene, scene_file, out, progress);
       },
       [this, fail, estimates, out_path](const QString& error) {
         if (!error.isEmpty())
@@ -755,54 +741,26 @@ void MainWindow::match_scene(const QString& out_path) {
   namespace fs = std::filesystem;
   const fs::path out = fs::absolute(out_path.toStdString()), scene_file = fs::absolute(scene_path_.toStdString());
   const AnalysisOptions analysis = scene_->analysed->analysis().options;
-  struct Matched {
-    QStringList lines;  // what `relight fit --register --refine-placement` prints
-    QString camera = tr("the camera kept as given");
-    int lights_moved = 0;
-  };
-  auto matched = std::make_shared<Matched>();
+  auto matched = std::make_shared<SceneMatch>();
   run_task(
       tr("Matching the scene to the photo…"),
       [scene_file, out, analysis, matched](Progress& progress) {
-        Scene scene = load_scene(scene_file, progress);  // its camera as given, not as an analysis registered it
-        const RayScene rays(scene.mesh);
-        const int width = scene.camera.width(), height = scene.camera.height();
-        try {
-          const RegistrationResult r = register_camera(scene, rays, {}, progress);
-          const float moved_px = view_difference_px(r.before, r.after, width, height);
-          if (visibly_better(r, width, height)) {
-            for (const std::string& line : describe_registration(r, width, height))
-              matched->lines << QString::fromStdString(line);
-            matched->camera = tr("the camera moved %1 px on the photo").arg(double(moved_px), 0, 'f', 1);
-          } else {  // as an analysis does: a camera already right is not nudged by the edge fit's noise
-            scene.camera = Camera(r.before, width, height);
-            matched->lines << tr("camera kept as given: the photo's edges meet the geometry's (edge mismatch %1 px; a "
-                                 "registered camera would see %2 px from it, its edge mismatch %3 px)")
-                                  .arg(r.mismatch_before_px, 0, 'f', 2)
-                                  .arg(double(moved_px), 0, 'f', 2)
-                                  .arg(r.mismatch_after_px, 0, 'f', 2);
-          }
-        } catch (const InputError& e) {  // too few edges, or a match beyond the range: reported, not "fixed"
-          matched->lines << tr("camera kept as given: %1").arg(QString::fromStdString(e.what()));
-        }
-        FitOptions fit;
-        fit.seed = analysis.seed;
-        fit.refine_placement = true;
-        const FitResult fitted = fit_lighting(scene, rays, scene_gbuffer(scene, rays, analysis), fit, progress);
-        for (const std::string& line : describe_fit(fitted)) matched->lines << QString::fromStdString(line);
-        matched->lights_moved =
-            int(std::count_if(fitted.placement.begin(), fitted.placement.end(),
-                              [](const PlacedLight& p) { return p.moved_m() > 0.0f || p.turned_deg() > 0.0f; }));
-        write_text_atomically(out, scene_to_json(fitted.scene, out.parent_path()));
+        *matched = write_scene_matched_to_photo(scene_file, out, analysis, progress);
       },
       [this, fail, matched, out_path](const QString& error) {
         if (!error.isEmpty())
           return fail(error == "cancelled" ? tr("Matching the scene to the photo was cancelled.") : error);
+        QStringList lines;
+        for (const std::string& line : matched->lines) lines << QString::fromStdString(line);
+        const QString camera =
+            matched->camera_moved_px
+                ? tr("the camera moved %1 px on the photo").arg(double(*matched->camera_moved_px), 0, 'f', 1)
+                : tr("the camera kept as given");
         report(tr("The scene matched to the photo is %1: %2, %3. It opens now (Show Details says what was fitted).")
-                   .arg(QFileInfo(out_path).fileName(), matched->camera,
+                   .arg(QFileInfo(out_path).fileName(), camera,
                         matched->lights_moved ? tr("%n light(s) moved", "", matched->lights_moved)
                                               : tr("the lights where they were")),
-               matched->lines);
+               lines);
         emit sceneMatched({});
         open_scene(out_path, rig_path_);
       });

@@ -1,0 +1,70 @@
+#include "gui/scenes_from_photo.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "analysis/camera_registration.h"
+#include "analysis/fit.h"
+#include "io/atomic_file.h"
+#include "io/scene_io.h"
+
+namespace relight::gui {
+
+namespace fs = std::filesystem;
+
+std::vector<MaterialEstimate> write_scene_with_materials(const StudioScene& open, const fs::path& scene_file,
+                                                         const fs::path& out, Progress& progress) {
+  const AnalysedScene& a = *open.analysed;
+  require_named_objects(a.scene());
+  // A fresh analysis, as `relight materials` makes: a cached one keeps no
+  // illumination to compare the photo with.
+  const Analysis analysis = analyze(a.scene(), a.rays(), a.gbuffer(), a.analysis().options, progress);
+  MaterialEstimationOptions estimation;
+  estimation.paths_per_pixel = a.analysis().options.paths_per_pixel;
+  estimation.seed = a.analysis().options.seed;
+  std::vector<MaterialEstimate> estimates =
+      estimate_materials(a.scene(), a.rays(), a.gbuffer(), analysis, estimation, progress);
+  if (std::none_of(estimates.begin(), estimates.end(), [](const MaterialEstimate& m) { return bool(m.gloss); }))
+    return estimates;
+  Scene given = load_scene(scene_file, progress);  // its camera as given, not as an analysis registered it
+  set_materials(given, with_estimates(given.materials, estimates));
+  write_text_atomically(out, scene_to_json(given, out.parent_path()));
+  return estimates;
+}
+
+SceneMatch write_scene_matched_to_photo(const fs::path& scene_file, const fs::path& out, const AnalysisOptions& options,
+                                        Progress& progress) {
+  SceneMatch match;
+  Scene scene = load_scene(scene_file, progress);  // its camera as given, not as an analysis registered it
+  const RayScene rays(scene.mesh);
+  const int width = scene.camera.width(), height = scene.camera.height();
+  try {
+    const RegistrationResult r = register_camera(scene, rays, {}, progress);
+    const float moved_px = view_difference_px(r.before, r.after, width, height);
+    if (visibly_better(r, width, height)) {
+      match.lines = describe_registration(r, width, height);
+      match.camera_moved_px = moved_px;
+    } else {  // as an analysis does: a camera already right is not nudged by the edge fit's noise
+      scene.camera = Camera(r.before, width, height);
+      match.lines.push_back(fmt::format(
+          "camera kept as given: the photo's edges meet the geometry's (edge mismatch {:.2f} px; a registered camera "
+          "would see {:.2f} px from it, its edge mismatch {:.2f} px)",
+          r.mismatch_before_px, moved_px, r.mismatch_after_px));
+    }
+  } catch (const InputError& e) {  // too few edges, or a match beyond the range: reported, not "fixed"
+    match.lines.push_back(std::string("camera kept as given: ") + e.what());
+  }
+  FitOptions fit;
+  fit.seed = options.seed;
+  fit.refine_placement = true;
+  const FitResult fitted = fit_lighting(scene, rays, scene_gbuffer(scene, rays, options), fit, progress);
+  for (std::string& line : describe_fit(fitted)) match.lines.push_back(std::move(line));
+  match.lights_moved = int(std::count_if(fitted.placement.begin(), fitted.placement.end(), [](const PlacedLight& p) {
+    return p.moved_m() > 0.0f || p.turned_deg() > 0.0f;
+  }));
+  write_text_atomically(out, scene_to_json(fitted.scene, out.parent_path()));
+  return match;
+}
+
+}  // namespace relight::gui
