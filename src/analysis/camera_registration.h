@@ -55,13 +55,13 @@ struct RegistrationResult {
   std::string what_moved(int width, int height) const;
 };
 
-// The largest distance (pixels), over a 9 x 9 grid on a photo of width x
-// height, between where the two cameras show the same direction: how far
-// apart what their pixels see is.
 // What `relight register` prints: the camera unchanged and why, or what
 // moved and how much the edge mismatch fell (one line each).
 std::vector<std::string> describe_registration(const RegistrationResult& r, int width, int height);
 
+// The largest distance (pixels), over a 9 x 9 grid on a photo of width x
+// height, between where the two cameras show the same direction: how far
+// apart what their pixels see is.
 float view_difference_px(const CameraSpec& a, const CameraSpec& b, int width, int height);
 
 // The photo or the geometry shows too few edges to register the camera by.
