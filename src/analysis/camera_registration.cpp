@@ -373,37 +373,47 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
 
 namespace relight {
 
-bool visibly_better(const RegistrationResult& r, int width, int height) {
-  return view_difference_px(r.before, r.after, width, height) > kVisiblyOffPx &&
-         r.mismatch_after_px <= (1.0f - kVisiblyBetterShare) * r.mismatch_before_px;
-}
-
-std::optional<CameraSpec> register_when_off(Scene& scene, const RayScene& rays, Progress& progress) {
+CameraCheck check_camera(Scene& scene, const RayScene& rays, Progress& progress) {
   const int w = scene.camera.width(), h = scene.camera.height();
+  CameraCheck check;
   RegistrationResult r;
   try {
     r = register_camera(scene, rays, RegistrationOptions{}, progress);
   } catch (const TooFewEdges& e) {
-    spdlog::info("camera: not checked against the photo: {}", e.message());
-    return std::nullopt;
+    check.kept_because = "not checked against the photo: " + e.message();
+    return check;
   } catch (const InputError& e) {
-    spdlog::warn("{}: the camera is kept as given: {}", scene.path.string(), e.what());
-    return std::nullopt;
+    check.kept_because = e.what();
+    check.refused = true;
+    return check;
   }
-  const float off_px = view_difference_px(r.before, r.after, w, h);
-  if (!visibly_better(r, w, h)) {
+  check.moved_px = view_difference_px(r.before, r.after, w, h);
+  if (check.moved_px <= kVisiblyOffPx || r.mismatch_after_px > (1.0f - kVisiblyBetterShare) * r.mismatch_before_px) {
     scene.camera = Camera(r.before, w, h);
-    spdlog::info(
-        "camera: the photo's edges meet the geometry's (edge mismatch {:.2f} px; a registered camera would "
-        "see {:.2f} px from it, its edge mismatch {:.2f} px): kept as given",
-        r.mismatch_before_px, off_px, r.mismatch_after_px);
+    check.kept_because = fmt::format(
+        "the photo's edges meet the geometry's (edge mismatch {:.2f} px; a registered camera would see {:.2f} px "
+        "from it, its edge mismatch {:.2f} px)",
+        r.mismatch_before_px, check.moved_px, r.mismatch_after_px);
+    return check;
+  }
+  check.registered = r;
+  return check;
+}
+
+std::optional<CameraSpec> register_when_off(Scene& scene, const RayScene& rays, Progress& progress) {
+  const CameraCheck check = check_camera(scene, rays, progress);
+  if (check.refused) spdlog::warn("{}: the camera is kept as given: {}", scene.path.string(), check.kept_because);
+  if (!check.registered) {
+    if (!check.refused) spdlog::info("camera kept as given: {}", check.kept_because);
     return std::nullopt;
   }
+  const RegistrationResult& r = *check.registered;
   spdlog::warn(
       "{}: the camera was off the photo by up to {:.1f} px (edge mismatch {:.2f} -> {:.2f} px): registered for this "
       "analysis, {}. analysis.json keeps it and every render of the analysis uses it; `relight register` writes it "
       "into a scene, --keep-camera keeps the given one",
-      scene.path.string(), off_px, r.mismatch_before_px, r.mismatch_after_px, r.what_moved(w, h));
+      scene.path.string(), check.moved_px, r.mismatch_before_px, r.mismatch_after_px,
+      r.what_moved(scene.camera.width(), scene.camera.height()));
   return r.after;
 }
 

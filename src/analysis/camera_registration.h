@@ -98,8 +98,16 @@ constexpr float kVisiblyOffPx = 1.5f;
 // one moved by the edge fit's noise gains a few percent (a 320 x 240
 // photo's exact camera: its view moved 2 px, its mismatch 0.90 -> 0.88 px).
 constexpr float kVisiblyBetterShare = 0.1f;
-// Whether the registered camera is worth taking by those two tests.
-bool visibly_better(const RegistrationResult& r, int width, int height);
+// What that look found, without a word logged (relight studio's Match the
+// Scene to the Photo reports it itself).
+struct CameraCheck {
+  std::optional<RegistrationResult> registered;  // taken: the scene's camera is its `after`
+  float moved_px = 0.0f;                         // how far the registered camera shows the photo from the given one
+  std::string kept_because;                      // where not taken, why
+  bool refused = false;                          // not taken because the match went beyond the refusal range
+};
+CameraCheck check_camera(Scene& scene, const RayScene& rays, Progress& progress);
+// check_camera, logged (the refusal and the registration as warnings).
 std::optional<CameraSpec> register_when_off(Scene& scene, const RayScene& rays, Progress& progress);
 
 }  // namespace relight

@@ -14,7 +14,6 @@
 #include <cmath>
 #include <filesystem>
 
-#include "analysis/material_estimation.h"
 #include "core/error.h"
 #include "gui/environment_entry.h"
 #include "gui/geometry_overlay.h"
@@ -29,7 +28,6 @@
 #include "gui/scenes_from_photo.h"
 #include "gui/task_status.h"
 #include "gui/tone_map.h"
-#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_io.h"
 

@@ -1,7 +1,5 @@
 #include "gui/scenes_from_photo.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 
 #include "analysis/camera_registration.h"
@@ -38,22 +36,15 @@ SceneMatch write_scene_matched_to_photo(const fs::path& scene_file, const fs::pa
   SceneMatch match;
   Scene scene = load_scene(scene_file, progress);  // its camera as given, not as an analysis registered it
   const RayScene rays(scene.mesh);
-  const int width = scene.camera.width(), height = scene.camera.height();
-  try {
-    const RegistrationResult r = register_camera(scene, rays, {}, progress);
-    const float moved_px = view_difference_px(r.before, r.after, width, height);
-    if (visibly_better(r, width, height)) {
-      match.lines = describe_registration(r, width, height);
-      match.camera_moved_px = moved_px;
-    } else {  // as an analysis does: a camera already right is not nudged by the edge fit's noise
-      scene.camera = Camera(r.before, width, height);
-      match.lines.push_back(fmt::format(
-          "camera kept as given: the photo's edges meet the geometry's (edge mismatch {:.2f} px; a registered camera "
-          "would see {:.2f} px from it, its edge mismatch {:.2f} px)",
-          r.mismatch_before_px, moved_px, r.mismatch_after_px));
-    }
-  } catch (const InputError& e) {  // too few edges, or a match beyond the range: reported, not "fixed"
-    match.lines.push_back(std::string("camera kept as given: ") + e.what());
+  // As every analysis takes it: a camera already right is not nudged by the
+  // edge fit's noise, and a match beyond the refusal range is reported, not
+  // "fixed".
+  const CameraCheck check = check_camera(scene, rays, progress);
+  if (check.registered) {
+    match.lines = describe_registration(*check.registered, scene.camera.width(), scene.camera.height());
+    match.camera_moved_px = check.moved_px;
+  } else {
+    match.lines.push_back("camera kept as given: " + check.kept_because);
   }
   FitOptions fit;
   fit.seed = options.seed;
