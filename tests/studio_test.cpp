@@ -1481,15 +1481,12 @@ class StudioTest : public QObject {
     fs::create_directories(copy);
     const fs::path room = fs::path(RELIGHT_SOURCE_DIR) / "examples/room";
     for (const char* f : {"scene.json", "photo.exr", "geometry.obj"}) fs::copy_file(room / f, copy / f);
-    nlohmann::json scene = nlohmann::json::parse(std::ifstream(copy / "scene.json"));
-    const auto vec = [](const nlohmann::json& v) {
-      return Vec3(v[0].get<float>(), v[1].get<float>(), v[2].get<float>());
-    };
-    const Vec3 position = vec(scene["camera"]["position"]), up = vec(scene["camera"]["up"]).normalized();
-    const Vec3 turned =
-        position + Eigen::AngleAxisf(1.0f * kPi / 180.0f, up) * (vec(scene["camera"]["look_at"]) - position);
-    scene["camera"]["look_at"] = {turned.x(), turned.y(), turned.z()};
-    std::ofstream(copy / "scene.json") << scene.dump(2);
+    Scene scene = load_scene(copy / "scene.json");
+    CameraSpec turned = scene.camera.spec();
+    turned.look_at =
+        turned.position + Eigen::AngleAxisf(radians(1.0f), turned.up.normalized()) * (turned.look_at - turned.position);
+    scene.camera = Camera(turned, scene.camera.width(), scene.camera.height());
+    std::ofstream(copy / "scene.json") << scene_to_json(scene, copy);
     const std::string original = file_text(copy / "scene.json");
     const Scene truth = load_scene(room / "scene.json");
     const int w = truth.camera.width(), h = truth.camera.height();
