@@ -1443,7 +1443,7 @@ class StudioTest : public QObject {
 
     QSignalSpy found(window_.get(), &MainWindow::materialsFound);
     window_->find_materials(folder_.filePath("room_materials.json"));
-    QVERIFY(found.wait(60000));
+    QVERIFY(found.wait(240000));
     QCOMPARE(found.at(0).at(0).toString(), QString());
     QCOMPARE(found.at(0).at(1).toInt(), 0);
     QVERIFY(!fs::exists(folder_.filePath("room_materials.json").toStdString()));
