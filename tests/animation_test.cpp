@@ -71,7 +71,9 @@ TEST(Animation, SmoothKeysPassThroughTheirKeysWithoutOvershoot) {
     const float p = light_at_frame(light, f).power;
     EXPECT_GE(p, 0.0f) << "frame " << f;
     EXPECT_LE(p, 100.0f) << "frame " << f;
-    if (f > 40) EXPECT_GE(p, previous) << "frame " << f << ": the rise from 40 to 80 is monotone";
+    if (f > 40) {
+      EXPECT_GE(p, previous) << "frame " << f << ": the rise from 40 to 80 is monotone";
+    }
     previous = p;
   }
   // Frames 60 -> 80 continue the rise at 1.5 a frame: the slope at 60 is the

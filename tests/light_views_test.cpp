@@ -160,7 +160,9 @@ TEST(LightViews, TheSunsCascadesSplitThePixelsAndHoldEveryOccluder) {
     EXPECT_EQ(s.map, LightSamplePoint::Map::orthographic);
     EXPECT_EQ(s.weight, 1.0f);
     EXPECT_EQ(s.side, options.sun_size);
-    if (c > 0) EXPECT_EQ(s.distance_range.x(), samples[c - 1].distance_range.y());
+    if (c > 0) {
+      EXPECT_EQ(s.distance_range.x(), samples[c - 1].distance_range.y());
+    }
     int served = 0;
     for (const SurfacePoint& p : view.surface) {
       if (p.distance < s.distance_range.x() || p.distance >= s.distance_range.y()) continue;

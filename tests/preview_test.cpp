@@ -16,7 +16,9 @@ TEST(PreviewAnalysis, ReducesALargePhotoKeepingItsLightShapeAndCamera) {
   scene.photo = Image(kW, kH);
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) scene.photo.at(x, y) = Vec3((x + 0.5f) / kW, 0.5f, (y + 0.5f) / kH);
-  scene.reference = AlbedoReference{{Vec2(120, 90), Vec2(600, 90), Vec2(600, 450)}};
+  AlbedoReference reference;
+  reference.polygon = {Vec2(120, 90), Vec2(600, 90), Vec2(600, 450)};
+  scene.reference = reference;
   reduce_for_preview(scene);
 
   const int w = scene.photo.width, h = scene.photo.height;

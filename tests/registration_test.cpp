@@ -237,12 +237,22 @@ AlbedoFigures analysed_albedo(Scene scene, const RayScene& rays, bool keep_camer
           a.albedo.edge_offset_px, float(marked) / float(a.albedo.edge_mismatch.size()), registered};
 }
 
+// The exact camera and geometry's figures, analysed once per scene for the
+// tests below (gtest runs them in one process).
+const AlbedoFigures& exact_albedo(const Scene& scene, const RayScene& rays, const fs::path& folder) {
+  static std::map<fs::path, AlbedoFigures> analysed;
+  const auto found = analysed.find(folder);
+  return found != analysed.end()
+             ? found->second
+             : analysed.emplace(folder, analysed_albedo(scene, rays, false, false, folder)).first->second;
+}
+
 TEST_P(ReferenceRegistration, ACameraALittleOffIsRegisteredOrItsEdgesAligned) {
   const fs::path folder = test::reference_scenes_folder() / GetParam();
   if (!fs::exists(folder / "scene.json")) GTEST_SKIP() << "reference scene " << folder << " not found";
   Scene scene = load_scene((folder / "scene.json").string(), Progress::silent());
   const RayScene rays(scene.mesh);
-  const AlbedoFigures exact = analysed_albedo(scene, rays, false, true, folder);
+  const AlbedoFigures exact = exact_albedo(scene, rays, folder);
   scene.camera = Camera(perturbed(scene.camera, Perturbation{"turned 0.25 degrees", 0.25f}), scene.camera.width(),
                         scene.camera.height());
   const AlbedoFigures off = analysed_albedo(scene, rays, true, false, folder),
@@ -274,7 +284,7 @@ TEST_P(ReferenceRegistration, VerticesMovedByUpTo1cm) {
   if (!fs::exists(folder / "scene.json")) GTEST_SKIP() << "reference scene " << folder << " not found";
   const Scene scene = load_scene((folder / "scene.json").string(), Progress::silent());
   const RayScene rays(scene.mesh);
-  const AlbedoFigures exact = analysed_albedo(scene, rays, false, false, folder);
+  const AlbedoFigures& exact = exact_albedo(scene, rays, folder);
   // The file's vertices move, each by one offset: the mesh's copies of a
   // vertex (one per normal it has on each side of a crease) move together.
   Scene moved = scene;

@@ -1064,14 +1064,14 @@ class StudioTest : public QObject {
     PhotoView& view = window_->photo_view();
     const Camera& camera = document().session().view().camera();
     int shown = -1;
-    std::optional<Vec2> at;
+    Vec2 at = Vec2::Zero();
     for (int i = 0; i < document().light_count() && shown < 0; ++i)
       if (document().light(i).type != LightType::directional)
-        if ((at = camera.project(document().light(i).position))) shown = i;
+        if (const std::optional<Vec2> p = camera.project(document().light(i).position)) shown = i, at = *p;
     QVERIFY(shown >= 0);
     window_->select_light(-1);
     const std::string rig_before = rig_to_json(document().rig());
-    const QPointF widget = view.widget_position(QPointF(at->x(), at->y()));
+    const QPointF widget = view.widget_position(QPointF(at.x(), at.y()));
     QTest::mouseClick(&view, Qt::LeftButton, {}, widget.toPoint());
     QCOMPARE(window_->selected_light(), shown);
     QCOMPARE(window_->undo_stack().count(), 0);

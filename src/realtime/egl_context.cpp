@@ -57,7 +57,7 @@ EGLContext create_context(EGLDisplay display) {
     if (!has_extension(display, "EGL_KHR_no_config_context")) return EGL_NO_CONTEXT;
     config = EGL_NO_CONFIG_KHR;
   }
-  for (const auto [major, minor] : {std::pair{4, 3}, std::pair{3, 3}}) {
+  for (const auto& [major, minor] : {std::pair{4, 3}, std::pair{3, 3}}) {
     const EGLint context_attributes[] = {
         EGL_CONTEXT_MAJOR_VERSION,           major,   EGL_CONTEXT_MINOR_VERSION, minor, EGL_CONTEXT_OPENGL_PROFILE_MASK,
         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
