@@ -290,7 +290,7 @@ const std::vector<Row>& catalogue() {
       {"PhotoClaims0x0", [](SceneFolder& f) { forge_exr_size(f / "photo.exr", -1, -1); }, Command::load,
        "photo.exr", "not a readable image"},
       {"PhotoClaims100000x100000", [](SceneFolder& f) { forge_exr_size(f / "photo.exr", 99999, 99999); },
-       Command::load, "photo.exr", "image of 100000x100000 (10000.0 Mpixel) is over the limit of 25.0 Mpixel"},
+       Command::load, "photo.exr", "image of 100000x100000 (10000.0 Mpixel) is over the limit of"},
       {"PhotoOverMaxPixels", [](SceneFolder&) {}, Command::load, "photo.exr",
        "image of 8x6 (0.0 Mpixel) is over the limit", 2, {"--max-pixels", "40"}},
       {"PhotoWithNaN", [](SceneFolder& f) { f.replace_photo(photo_with(3, 2, std::numeric_limits<float>::quiet_NaN())); },

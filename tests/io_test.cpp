@@ -456,6 +456,34 @@ TEST(ImageErrors, MissingFile) {
                   "not found");
 }
 
+// The default pixel limit is the largest photo whose analysis fits in half
+// of this machine's memory (an analysis peaks at about 150 MiB + 135 bytes a
+// pixel: docs/benchmarks.md, "Photo size"): a 45-Mpixel camera photo opens
+// where that holds. Refused, the message says why; a limit the user set is
+// just named.
+std::string pixel_limit_message(int64_t width, int64_t height) {
+  return input_error_message([&] { expect_within_pixel_limit("photo.exr", "image", width, height); });
+}
+
+TEST(ImageErrors, TheDefaultPixelLimitIsWhatHalfOfTheMachinesMemoryAnalyses) {
+  const int64_t memory = int64_t(::sysconf(_SC_PHYS_PAGES)) * ::sysconf(_SC_PAGE_SIZE);
+  ASSERT_GT(memory, 0);
+  const int64_t camera_photo = int64_t(8256) * 5504;  // 45.4 Mpixel
+  const bool fits = (int64_t(150) << 20) + 135 * camera_photo <= memory / 2;
+  EXPECT_EQ(max_image_pixels(), default_max_image_pixels());
+  if (fits)
+    EXPECT_NO_THROW(expect_within_pixel_limit("photo.exr", "image", 8256, 5504)) << memory << " bytes of memory";
+  else
+    EXPECT_NE(pixel_limit_message(8256, 5504).find("is over the limit"), std::string::npos);
+  EXPECT_NE(pixel_limit_message(100000, 100000).find("fits in half of this machine's"), std::string::npos);
+
+  set_max_image_pixels(40);
+  const std::string set_by_the_user = pixel_limit_message(8, 6);
+  set_max_image_pixels(default_max_image_pixels());
+  EXPECT_NE(set_by_the_user.find("is over the limit of 0.0 Mpixel (raise it with --max-pixels"), std::string::npos)
+      << set_by_the_user;
+}
+
 TEST(ImageErrors, NaNPixelIsReportedWithItsPosition) {
   TempDir dir;
   Image img(3, 2, Vec3(1, 1, 1));

@@ -125,9 +125,10 @@ int run(std::span<const std::string> args) {
        {"relight render scene.json --rig rig.json --analysis analysis -o relit.exr", "re-light the photo"}}));
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "print what each step does");
-  int64_t max_pixels = kDefaultMaxImagePixels;
+  int64_t max_pixels = default_max_image_pixels();
   app.add_option("--max-pixels", max_pixels,
-                 "refuse photos and probes of more pixels than this; memory grows with the photo's size "
+                 "refuse photos and probes of more pixels than this; memory grows with the photo's size, and "
+                 "the default is the largest photo whose analysis fits in half of this machine's memory "
                  "(docs/reliability.md)")
       ->envname("RELIGHT_MAX_PIXELS")
       ->check(CLI::PositiveNumber)

@@ -4,6 +4,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -25,7 +26,12 @@ using OIIO::TypeDesc;
 
 namespace {
 
-std::atomic<int64_t> g_max_pixels{kDefaultMaxImagePixels};
+int64_t physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page_size > 0 ? int64_t(pages) * page_size : 0;
+}
+
+std::atomic<int64_t> g_max_pixels{default_max_image_pixels()};
 
 struct RawImage {
   int width = 0, height = 0, channels = 0;  // channels: those read
@@ -104,6 +110,12 @@ void write_pixels(const fs::path& path, const ImageSpec& spec, const void* data,
 
 }  // namespace
 
+int64_t default_max_image_pixels() {
+  constexpr int64_t kFixedBytes = int64_t(150) << 20, kBytesPerPixel = 135, kWithoutMemory = 25'000'000;
+  const int64_t memory = physical_memory_bytes();
+  return memory > 2 * kFixedBytes ? (memory / 2 - kFixedBytes) / kBytesPerPixel : kWithoutMemory;
+}
+
 int64_t max_image_pixels() { return g_max_pixels.load(); }
 void set_max_image_pixels(int64_t pixels) { g_max_pixels.store(pixels); }
 
@@ -112,12 +124,19 @@ bool is_black(const Image& image) {
 }
 
 void expect_within_pixel_limit(const std::string& name, const char* what, int64_t width, int64_t height) {
-  const int64_t pixels = width * height;
-  if (pixels > max_image_pixels())
-    throw InputError(name, "",
-                     fmt::format("{} of {}x{} ({:.1f} Mpixel) is over the limit of {:.1f} Mpixel "
-                                 "(raise it with --max-pixels or RELIGHT_MAX_PIXELS)",
-                                 what, width, height, pixels * 1e-6, max_image_pixels() * 1e-6));
+  const int64_t pixels = width * height, limit = max_image_pixels();
+  if (pixels <= limit) return;
+  const int64_t memory = physical_memory_bytes();
+  const std::string why = limit == default_max_image_pixels() && memory > 0
+                              ? fmt::format(
+                                    ", the largest photo whose analysis fits in half of this machine's "
+                                    "{:.1f} GiB of memory",
+                                    memory / double(int64_t(1) << 30))
+                              : "";
+  throw InputError(name, "",
+                   fmt::format("{} of {}x{} ({:.1f} Mpixel) is over the limit of {:.1f} Mpixel{} (raise it with "
+                               "--max-pixels or RELIGHT_MAX_PIXELS)",
+                               what, width, height, pixels * 1e-6, limit * 1e-6, why));
 }
 
 Image resized(const Image& image, int width, int height) {

@@ -15,7 +15,14 @@ namespace relight {
 // one is refused with an InputError before any pixel is read, so a huge photo
 // or a forged header cannot exhaust memory. The CLI sets it from --max-pixels
 // or RELIGHT_MAX_PIXELS (docs/reliability.md).
-inline constexpr int64_t kDefaultMaxImagePixels = 25'000'000;
+//
+// By default, the largest photo whose analysis fits in half of this
+// machine's memory (an analysis peaks at about 150 MiB + 135 bytes a pixel
+// beyond its mesh: docs/benchmarks.md, "Photo size"; the other half is left
+// to the mesh and whatever else runs): 94 Mpixel on 24 GiB, 30 on 8, so a
+// 45-Mpixel camera photo opens where it can be analysed. 25 Mpixel where the
+// memory cannot be read.
+int64_t default_max_image_pixels();
 int64_t max_image_pixels();
 void set_max_image_pixels(int64_t pixels);
 // Throws InputError naming `name` where width x height is over
