@@ -513,6 +513,28 @@ TEST(ImageErrors, GarbageFile) {
   EXPECT_MENTIONS(input_error_message([&] { read_image(dir / "garbage.png"); }), (dir / "garbage.png").string());
 }
 
+// A portrait taken with the camera turned, stored sideways with an EXIF
+// Orientation of 6 (show it turned 90 degrees clockwise), is read as shown:
+// the stored bottom-left pixel is the top-left one.
+TEST(ImageErrors, APhotoStoredSidewaysIsReadUprightAsItsOrientationSays) {
+  TempDir dir;
+  const fs::path file = dir / "portrait.tif";
+  OIIO::ImageSpec spec(3, 2, 3, OIIO::TypeDesc::FLOAT);
+  spec.attribute("Orientation", 6);
+  std::vector<float> stored(3 * 2 * 3);
+  for (size_t i = 0; i < stored.size(); ++i) stored[i] = float(i) / float(stored.size());
+  const auto out = OIIO::ImageOutput::create(file.string());
+  ASSERT_TRUE(out && out->open(file.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, stored.data()) &&
+              out->close());
+  const Image upright = read_image(file);
+  ASSERT_EQ(upright.width, 2);
+  ASSERT_EQ(upright.height, 3);
+  const auto stored_pixel = [&](int x, int y) { return stored[size_t(3 * (y * 3 + x))]; };
+  EXPECT_EQ(upright.at(0, 0).x(), stored_pixel(0, 1));  // the stored bottom-left
+  EXPECT_EQ(upright.at(1, 0).x(), stored_pixel(0, 0));  // the stored top-left
+  EXPECT_EQ(upright.at(0, 2).x(), stored_pixel(2, 1));  // the stored bottom-right
+}
+
 TEST(MeshErrors, MissingFile) {
   TempDir dir;
   EXPECT_MENTIONS(input_error_message([&] { load_mesh(dir / "absent.obj"); }), (dir / "absent.obj").string(),

@@ -42,6 +42,40 @@ struct RawImage {
 // OpenImageIO's messages may span several lines; an InputError is one line.
 std::string first_line(const std::string& message) { return message.substr(0, message.find('\n')); }
 
+// A camera photo stored sideways or upside down with an EXIF Orientation that
+// says how to show it (taken with the camera turned) is turned upright, as
+// photo viewers and fSpy show it and a camera is matched to it. Blender shows
+// the file as stored: the warning says what was done.
+void turn_upright(const fs::path& path, RawImage& raw) {
+  static const char* const kTurned[] = {"",
+                                        "",
+                                        "mirrored left to right",
+                                        "turned 180 degrees",
+                                        "mirrored top to bottom",
+                                        "mirrored and turned 90 degrees anticlockwise",
+                                        "turned 90 degrees clockwise",
+                                        "mirrored and turned 90 degrees clockwise",
+                                        "turned 90 degrees anticlockwise"};
+  const int orientation = raw.spec.get_int_attribute("Orientation", 1);
+  if (orientation < 2 || orientation > 8) return;
+  ImageSpec stored(raw.width, raw.height, raw.channels, TypeDesc::FLOAT);
+  stored.attribute("Orientation", orientation);
+  const OIIO::ImageBuf as_stored(stored, raw.data.data());
+  const OIIO::ImageBuf upright = OIIO::ImageBufAlgo::reorient(as_stored);
+  std::vector<float> pixels(raw.data.size());
+  if (upright.has_error() || !upright.get_pixels(upright.roi(), TypeDesc::FLOAT, pixels.data()))
+    throw InputError(path.string(), "",
+                     fmt::format("could not be turned upright as its EXIF orientation ({}) says ({})", orientation,
+                                 first_line(upright.geterror())));
+  raw.data = std::move(pixels);
+  raw.width = upright.spec().width;
+  raw.height = upright.spec().height;
+  spdlog::warn(
+      "{}: read {}x{} upright, {} as its EXIF orientation ({}) says and photo viewers show it (Blender "
+      "shows it as stored)",
+      path.string(), raw.width, raw.height, kTurned[orientation], orientation);
+}
+
 // Reads the channels [first, last) that pick_channels chooses for the image's
 // spec; the size is checked against the limit before any pixel is read.
 RawImage read_raw(const fs::path& path, const std::function<std::pair<int, int>(const ImageSpec&)>& pick_channels) {
@@ -74,6 +108,7 @@ RawImage read_raw(const fs::path& path, const std::function<std::pair<int, int>(
                      std::isfinite(v) ? fmt::format("holds {:g}, beyond {:g}; expected radiance", v, kMaxPixelValue)
                                       : std::string("holds a NaN or infinite value; expected finite radiance"));
   }
+  turn_upright(path, raw);
   return raw;
 }
 
