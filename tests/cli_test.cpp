@@ -18,6 +18,7 @@
 #include "io/scene_io.h"
 #include "room_scene.h"
 #include "scene_folder.h"
+#include "temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -26,13 +27,6 @@ namespace {
 int relight_run(std::vector<std::string> args) {
   args.insert(args.begin(), "relight");
   return relight::cli::run(args);
-}
-
-fs::path temp_folder(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("relight_cli_test_" + name + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
 }
 
 const fs::path kRoom = fs::path(RELIGHT_SOURCE_DIR) / "examples" / "room";
@@ -46,7 +40,7 @@ TEST(Cli, MissingSceneIsBadInput) {
 }
 
 TEST(Cli, MalformedJsonNamesTheLine) {
-  const fs::path dir = temp_folder("malformed");
+  const relight::test::TempDir dir("malformed");
   std::ofstream(dir / "scene.json") << "{\n  \"format\": \"relight-scene/1\",\n  \"photo\": \n}";
   testing::internal::CaptureStderr();
   EXPECT_EQ(relight_run({"rig", (dir / "scene.json").string(), "-o", (dir / "rig.json").string()}), 2);
@@ -87,7 +81,7 @@ TEST(Cli, EveryCommandHasAManPageHelpWithExamples) {
 }
 
 TEST(Cli, AnalyseRigRenderGivesBackThePhoto) {
-  const fs::path dir = temp_folder("sequence");
+  const relight::test::TempDir dir("sequence");
   const std::string scene = (kRoom / "scene.json").string();
   ASSERT_EQ(relight_run({"analyze", scene, "-o", (dir / "analysis").string(), "--spp", "16"}), 0);
   for (const char* f : {"illumination.exr", "albedo.exr", "albedo.png", "mask.exr", "analysis.json"})
@@ -113,7 +107,7 @@ TEST(Cli, AnalyseRigRenderGivesBackThePhoto) {
 // A rig's new environment through `relight render`: where the room's photo
 // shows no geometry, the re-lit image shows the new sky x environment_scale.
 TEST(Cli, RenderShowsTheRigsNewSkyPastTheGeometry) {
-  const fs::path dir = temp_folder("new_sky");
+  const relight::test::TempDir dir("new_sky");
   const std::string scene = (kRoom / "scene.json").string();
   // The sky past the geometry needs no interreflection (one render, not five).
   ASSERT_EQ(
@@ -140,7 +134,7 @@ TEST(Cli, RenderShowsTheRigsNewSkyPastTheGeometry) {
 // named by the '#'s, in a folder made for them; frame 3 rendered alone (a
 // farm's chunk) is frame 3 of the whole run, to the bit.
 TEST(Cli, RenderFramesWritesTheSequence) {
-  const fs::path dir = temp_folder("frames");
+  const relight::test::TempDir dir("frames");
   const std::string scene = (kRoom / "scene.json").string();
   ASSERT_EQ(
       relight_run({"analyze", scene, "-o", (dir / "analysis").string(), "--spp", "2", "--interreflection", "off"}), 0);
@@ -174,7 +168,7 @@ TEST(Cli, RenderFramesWritesTheSequence) {
 // over the frames), then re-lit frame by frame; and the errors a shot meets.
 TEST(Cli, AShotIsAnalysedFrameByFrameAndRelitAsASequence) {
   using namespace relight;
-  const fs::path dir = temp_folder("shot");
+  const relight::test::TempDir dir("shot");
   const Scene room = example::room_scene(160, 120);
   const RayScene rays(room.mesh);
   nlohmann::json cameras = nlohmann::json::array();
@@ -224,7 +218,7 @@ TEST(Cli, AShotIsAnalysedFrameByFrameAndRelitAsASequence) {
 // farm-check's answer (status 3 and the missing frames) before any is made.
 // tests/farm_slurm_test.sh submits such jobs to a real Slurm.
 TEST(Cli, FarmWritesAJobArrayOfChunksAndChecksItsFrames) {
-  const fs::path dir = temp_folder("farm");
+  const relight::test::TempDir dir("farm");
   fs::create_directories(dir / "analysis");
   relight::test::write_text(dir / "analysis" / "analysis.json", "{}");
   const std::string scene = (kRoom / "scene.json").string(), rig = (kRoom / "rigs" / "evening.json").string();
@@ -251,7 +245,7 @@ TEST(Cli, FarmWritesAJobArrayOfChunksAndChecksItsFrames) {
 }
 
 TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
-  const fs::path dir = temp_folder("renders");
+  const relight::test::TempDir dir("renders");
   ASSERT_EQ(relight_run({"analyze", (kRoom / "scene.json").string(), "-o", dir.string(), "--spp", "8", "--save-renders",
                          "--bounce-source", "albedo"}),
             0);
@@ -273,7 +267,7 @@ TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
 }
 
 TEST(Cli, RadiosityAnalysisIsRecordedAndRendersFrom) {
-  const fs::path dir = temp_folder("radiosity");
+  const relight::test::TempDir dir("radiosity");
   ASSERT_EQ(relight_run({"analyze", (kRoom / "scene.json").string(), "-o", (dir / "analysis").string(), "--method",
                          "radiosity", "--spp", "8", "--node-samples", "32", "--gather-rays", "128"}),
             0);
@@ -295,7 +289,7 @@ TEST(Cli, RadiosityAnalysisIsRecordedAndRendersFrom) {
 // options, `size` and `extra` keys): exits 2 writing nothing, and returns
 // what it printed.
 std::string render_over_a_bad_analysis(const std::string& name, const std::string& size, const std::string& extra) {
-  const fs::path dir = temp_folder(name);
+  const relight::test::TempDir dir(name);
   fs::create_directories(dir / "analysis");
   std::ofstream(dir / "analysis" / "analysis.json")
       << R"({"strategy":"lights","paths_per_pixel":16,"gbuffer_samples":9,"seed":1,"max_bounces":4,
@@ -455,7 +449,7 @@ TEST(Cli, PreviewRefusesASizeOverMaxPixels) {
 
 // PSNR over no pixel is no figure: an all-zero mask is bad input, not "0.00 dB".
 TEST(Cli, CompareRefusesAMaskThatSelectsNoPixel) {
-  const fs::path dir = temp_folder("compare_zero_mask");
+  const relight::test::TempDir dir("compare_zero_mask");
   relight::write_exr(dir / "a.exr", relight::Image(4, 3, relight::Vec3(0.5f, 0.5f, 0.5f)));
   relight::write_exr(dir / "b.exr", relight::Image(4, 3, relight::Vec3(0.4f, 0.5f, 0.5f)));
   relight::write_exr(dir / "mask.exr", relight::Image(4, 3, relight::Vec3::Zero()));
@@ -463,11 +457,10 @@ TEST(Cli, CompareRefusesAMaskThatSelectsNoPixel) {
       {"compare", (dir / "a.exr").string(), (dir / "b.exr").string(), "--mask", (dir / "mask.exr").string()});
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("mask.exr: the mask selects no pixel"), std::string::npos) << r.err;
-  fs::remove_all(dir);
 }
 
 TEST(Cli, MeshWritesTheRefinedMeshItsPictureAndItsCounts) {
-  const fs::path dir = temp_folder("mesh");
+  const relight::test::TempDir dir("mesh");
   testing::internal::CaptureStdout();
   EXPECT_EQ(relight_run({"mesh", (kRoom / "scene.json").string(), "-o", (dir / "mesh").string(), "--albedo-gt",
                          (kRoom / "albedo_gt.exr").string(), "--mask", (kRoom / "mask.exr").string()}),
@@ -486,7 +479,7 @@ TEST(Cli, MeshWritesTheRefinedMeshItsPictureAndItsCounts) {
 }
 
 TEST(Cli, MeshRefusesATrueAlbedoOfAnotherSize) {
-  const fs::path dir = temp_folder("meshsize");
+  const relight::test::TempDir dir("meshsize");
   relight::write_exr(dir / "small.exr", relight::Image(10, 10));
   testing::internal::CaptureStderr();
   EXPECT_EQ(relight_run({"mesh", (kRoom / "scene.json").string(), "-o", (dir / "mesh").string(), "--albedo-gt",
@@ -514,7 +507,7 @@ fs::path room_with_camera_off(const fs::path& dir) {
 }
 
 TEST(Cli, RegisterTurnsTheCameraBackOrRefusesBeyondItsLimit) {
-  const fs::path dir = temp_folder("register");
+  const relight::test::TempDir dir("register");
   const fs::path scene = room_with_camera_off(dir);
   // Beyond --max-turn: exit 2, nothing written.
   EXPECT_EQ(relight_run({"register", scene.string(), "--max-turn", "0.3", "-o", (dir / "tight.json").string()}), 2);

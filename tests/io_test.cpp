@@ -2,10 +2,10 @@
 // names the file, the place — a JSON pointer such as /lights/0/power — and the
 // problem, FORMAT.md's rule), the successful loading of a small scene and a
 // rig, and the image and atomic writers.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -23,6 +23,7 @@
 #include "io/image_io.h"
 #include "io/mesh_io.h"
 #include "io/scene_io.h"
+#include "temp_dir.h"
 
 namespace relight {
 namespace {
@@ -30,28 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-// A fresh folder under the system temp folder, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const std::string test = info ? std::string(info->test_suite_name()) + "_" + info->name() : "x";
-    path_ = fs::temp_directory_path() /
-            ("relight_io_test_" + std::to_string(getpid()) + "_" + std::to_string(counter++) + "_" + test);
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  fs::path path_;
-};
+using relight::test::TempDir;
 
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
