@@ -108,6 +108,8 @@ image room 3 png "$room" --resize 8x6 -d uint8
 image ramp16 3 png --pattern fill:left=0,0,0:right=1,1,1 8x4 3 -d uint16
 image room 4 jpg "$room" --resize 8x6 -d uint8
 image room 5 tif "$room" --resize 8x6 -d float
+image room_sideways 5 tif "$room" --resize 6x8 -d float --orientation 6  # read upright: turned by its Orientation
+image room_sideways 4 jpg "$room" --resize 6x8 -d uint8 --orientation 8
 image room 6 ppm "$room" --resize 8x6 -d uint8
 image room 7 bmp "$room" --resize 8x6 -d uint8
 chmod -R u+w "$c"

@@ -5,6 +5,8 @@
 // file and the problem, and no output written. A few rows are odd but valid
 // input (docs/reliability.md says which and why): they must work, with a
 // warning where something was dropped or changed.
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,8 +17,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "reference_scenes.h"
 #include "sanitizer.h"
@@ -56,6 +56,16 @@ Image sky_with(int x, int y, float value) {
 // then claims (xmax+1) x (ymax+1) pixels whatever the file holds. Zeros are
 // appended where the chunk offsets of that many rows would be (16 rows a
 // chunk with zip), so that OpenEXR can read its header and open the file.
+// A 6 x 8 EXR holding an EXIF orientation, read upright as 8 x 6.
+void write_sideways_photo(const fs::path& path, int orientation) {
+  OIIO::ImageSpec spec(6, 8, 3, OIIO::TypeDesc::FLOAT);
+  spec.attribute("Orientation", orientation);
+  const std::vector<float> pixels(6 * 8 * 3, 0.3f);
+  const auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out && out->open(path.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) &&
+              out->close());
+}
+
 void forge_exr_size(const fs::path& path, int32_t xmax, int32_t ymax) {
   std::string bytes = read_text(path);
   for (const std::string attribute : {"dataWindow", "displayWindow"}) {
@@ -209,6 +219,16 @@ const std::vector<Row>& catalogue() {
       {"PhotoOfAnotherAspectThanTheCamera", [](SceneFolder& f) { f.scene["camera"]["aspect"] = 16.0 / 9.0; },
        Command::load, "photo.exr",
        "the photo's aspect ratio is 1.3333 (8x6) but the camera was matched on an image of aspect ratio 1.7778"},
+      // A portrait stored sideways (6 x 8, EXIF orientation 6) is read
+      // upright (8 x 6); the camera was matched on it as stored (6:8).
+      {"PhotoTurnedByItsOrientationAfterTheCameraWasMatchedOnItAsStored",
+       [](SceneFolder& f) {
+         f.scene["camera"]["aspect"] = 6.0 / 8.0;
+         write_sideways_photo(f / "photo.exr", 6);
+       },
+       Command::load, "photo.exr",
+       "(8x6) but the camera was matched on an image of aspect ratio 0.7500 (scene.json /camera): it was read upright, "
+       "turned a quarter as its EXIF orientation (6) says"},
       {"ReferencePolygonOfTwoPoints",
        [](SceneFolder& f) { f.scene["reference"] = {{"polygon", {{0, 0}, {8, 0}}}, {"albedo", 0.18}}; },
        Command::load, "scene.json", "/reference/polygon: expected three or more"},

@@ -152,6 +152,15 @@ int64_t default_max_image_pixels() {
 }
 
 int64_t max_image_pixels() { return g_max_pixels.load(); }
+
+int exif_orientation(const fs::path& path) {
+  const auto in = ImageInput::open(path.string());
+  if (!in) {
+    OIIO::geterror();  // not kept for the next reader's message
+    return 1;
+  }
+  return in->spec().get_int_attribute("Orientation", 1);
+}
 void set_max_image_pixels(int64_t pixels) { g_max_pixels.store(pixels); }
 
 bool is_black(const Image& image) {

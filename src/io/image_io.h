@@ -29,6 +29,11 @@ void set_max_image_pixels(int64_t pixels);
 // max_image_pixels(); `what` says what it is ("image", "view").
 void expect_within_pixel_limit(const std::string& name, const char* what, int64_t width, int64_t height);
 
+// The EXIF Orientation the image file holds: 1 (as stored) where it has none
+// or cannot be read; 5 to 8 where the readers turned it a quarter to read it
+// upright.
+int exif_orientation(const std::filesystem::path& path);
+
 // Every pixel 0 (a probe that measured no light).
 bool is_black(const Image& image);
 

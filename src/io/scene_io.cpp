@@ -449,12 +449,23 @@ void check_reference_object(const JsonReader& r, const AlbedoReference& ref, con
 void check_photo_aspect(const fs::path& photo_path, const Image& photo, const CameraSpec& camera) {
   if (camera.aspect <= 0.0f) return;
   const float photo_aspect = float(photo.width) / float(photo.height);
-  if (std::abs(photo_aspect / camera.aspect - 1.0f) <= 0.01f) return;
+  const auto near = [&](float aspect) { return std::abs(aspect / camera.aspect - 1.0f) <= 0.01f; };
+  if (near(photo_aspect)) return;
+  // Matched on the photo as stored, where Blender shows it, not turned
+  // upright as its EXIF orientation says (image_io.h).
+  const int orientation = exif_orientation(photo_path);
+  const std::string turned =
+      orientation >= 5 && orientation <= 8 && near(1.0f / photo_aspect)
+          ? fmt::format(
+                ": it was read upright, turned a quarter as its EXIF orientation ({}) says, and the camera "
+                "was matched on it as stored (as Blender shows it); set its orientation to 1 (e.g. exiftool "
+                "-Orientation=1 -n) to use it as stored, or match the camera on it upright",
+                orientation)
+          : ": use the photo as the camera was matched on (uncropped), or match the camera again";
   throw InputError(photo_path.string(), "",
                    fmt::format("the photo's aspect ratio is {:.4f} ({}x{}) but the camera was matched on an image of "
-                               "aspect ratio {:.4f} (scene.json /camera): use the photo as the camera was matched on "
-                               "(uncropped), or match the camera again",
-                               photo_aspect, photo.width, photo.height, camera.aspect));
+                               "aspect ratio {:.4f} (scene.json /camera){}",
+                               photo_aspect, photo.width, photo.height, camera.aspect, turned));
 }
 
 }  // namespace
