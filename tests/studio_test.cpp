@@ -1539,13 +1539,13 @@ class StudioTest : public QObject {
   }
 };
 
-// The functions that wait for the session's final renders (or, the last,
-// for two analyses and a material estimate), ten times slower under the
-// sanitizers than the rest: `studio_test --final-renders` runs them,
-// `studio_test --editing` everything else (tests/CMakeLists.txt: the first
-// is labelled `slow`, so CI runs it in the Release step only; the session's
-// final renders run under the sanitizers in session_test, the estimate in
-// specular_test).
+// The functions that wait for the session's final renders (or, the last
+// three, for analyses and a material estimate or a fit), ten times slower
+// under the sanitizers than the rest: `studio_test --final-renders` runs
+// them, `studio_test --editing` everything else (tests/CMakeLists.txt: the
+// first is labelled `slow`, so CI runs it in the Release step only; the
+// session's final renders run under the sanitizers in session_test, the
+// analyses in the CLI tests, the estimate in specular_test).
 const QStringList kFinalRenderFunctions = {
     "the_picture_changes_when_a_light_moves",
     "solo_shows_one_light_alone_and_leaves_the_rig",
@@ -1561,6 +1561,7 @@ const QStringList kFinalRenderFunctions = {
     "export_writes_the_full_size_image",
     "finding_the_surfaces_that_shine_writes_and_opens_a_new_scene",
     "matching_the_scene_to_the_photo_writes_and_opens_it",
+    "a_large_photo_opens_with_a_preview_and_the_full_analysis_keeps_its_edits",
 };
 
 // QtTest's arguments, the test functions of the group asked for (one of
