@@ -92,12 +92,7 @@ bool kill_writer_mid_write(const std::string& mode, const fs::path& target, uint
 
 class KilledWriter : public testing::Test {
  protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() / ("relight_killed_writer_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-  fs::path dir;
+  const relight::test::TempDir dir{"killed_writer"};
 };
 
 TEST_F(KilledWriter, LeavesThePreviousTextFileIntact) {

@@ -23,6 +23,7 @@
 #include "reference_scenes.h"
 #include "render/render_illumination.h"
 #include "room_scene.h"
+#include "temp_dir.h"
 
 using namespace relight;
 namespace fs = std::filesystem;
@@ -151,8 +152,7 @@ TEST_F(RoomRegistration, AnAnalysisRegistersACameraVisiblyOffAndItsFolderKeepsIt
   EXPECT_EQ(exact.camera.spec().look_at, scene_->camera.spec().look_at);
 
   // On disk only for the analysis folder's hash of its inputs.
-  const fs::path folder = fs::temp_directory_path() / ("relight_registration_test_" + std::to_string(::getpid()));
-  fs::create_directories(folder);
+  const test::TempDir folder("registration_test");
   Scene off = *scene_;
   off.path = folder / "scene.json", off.photo_path = folder / "photo.exr", off.geometry_path = folder / "geometry.obj";
   for (const fs::path& file : {off.path, off.geometry_path}) std::ofstream(file) << "the room\n";
@@ -177,7 +177,6 @@ TEST_F(RoomRegistration, AnAnalysisRegistersACameraVisiblyOffAndItsFolderKeepsIt
 
   save_analysis(folder / "analysis", analysed->analysis(), analysed->scene());
   const auto reloaded = AnalysedScene::from_folder(Scene(off), folder / "analysis");
-  fs::remove_all(folder);
   EXPECT_LE((reloaded->scene().camera.spec().look_at - registered->look_at).norm(), 1e-5f);
   EXPECT_LE((reloaded->scene().camera.spec().up - registered->up).norm(), 1e-5f);
   EXPECT_NEAR(reloaded->scene().camera.spec().vfov_deg, registered->vfov_deg, 1e-4f);

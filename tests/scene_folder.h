@@ -16,6 +16,7 @@
 
 #include "cli/commands.h"
 #include "io/image_io.h"
+#include "temp_dir.h"
 
 namespace relight::test {
 
@@ -44,7 +45,8 @@ inline std::string read_text(const fs::path& path) {
 // A valid 8 x 6 scene: photo.exr, geometry.obj, a point light, and a rig;
 // write_json() writes `scene` as scene.json and `rig` as rig.json.
 struct SceneFolder {
-  fs::path dir;
+  TempDir folder;  // made first, removed last
+  fs::path dir = folder.path();
   json scene = json::parse(R"({
     "format": "relight-scene/1", "photo": "photo.exr", "geometry": "geometry.obj",
     "camera": {"position": [0, -5, 2], "look_at": [0, 0, 0.5], "up": [0, 0, 1], "vfov_deg": 40},
@@ -58,19 +60,10 @@ struct SceneFolder {
   })");
   std::optional<std::string> scene_text;  // written instead of `scene` when set (malformed JSON, 1e400)
 
-  explicit SceneFolder(const std::string& name) {
-    dir = fs::temp_directory_path() / ("relight_scene_folder_" + std::to_string(::getpid()) + "_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+  explicit SceneFolder(const std::string& name) : folder("scene_folder_" + name) {
     replace_photo(Image(8, 6, Vec3(0.3f, 0.25f, 0.2f)));
     write_text(dir / "geometry.obj", kGeometry);
   }
-  ~SceneFolder() {
-    std::error_code ignored;
-    fs::remove_all(dir, ignored);
-  }
-  SceneFolder(const SceneFolder&) = delete;
-  SceneFolder& operator=(const SceneFolder&) = delete;
 
   fs::path operator/(const std::string& name) const { return dir / name; }
 

@@ -1,9 +1,8 @@
-// A fresh folder of one test's own under the system's temporary folder,
-// removed with everything in it when the test ends (pass or fail), so runs
-// of the suite leave nothing behind.
+// A fresh folder of its own under the system's temporary folder, removed with
+// everything in it when it goes (a test passed or failed), so runs of the
+// suite leave nothing behind.
 #pragma once
 
-#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -15,16 +14,11 @@ namespace relight::test {
 
 class TempDir {
  public:
-  // Named for the process, the test and `label` (to tell several apart).
-  explicit TempDir(const std::string& label = "") {
+  // relight_LABEL_PID_N: the label says whose it is.
+  explicit TempDir(const std::string& label = "test") {
     static std::atomic<int> counter{0};
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const std::string test = info ? std::string(info->test_suite_name()) + "_" + info->name() : "x";
-    std::string name = "relight_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + "_" + test;
-    if (!label.empty()) name += "_" + label;
-    for (char& c : name)
-      if (c == '/') c = '_';  // a parameterised test's name
-    path_ = std::filesystem::temp_directory_path() / name;
+    path_ = std::filesystem::temp_directory_path() /
+            ("relight_" + label + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

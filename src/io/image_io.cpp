@@ -153,6 +153,8 @@ int64_t default_max_image_pixels() {
 
 int64_t max_image_pixels() { return g_max_pixels.load(); }
 
+void set_max_image_pixels(int64_t pixels) { g_max_pixels.store(pixels); }
+
 int exif_orientation(const fs::path& path) {
   const auto in = ImageInput::open(path.string());
   if (!in) {
@@ -161,7 +163,6 @@ int exif_orientation(const fs::path& path) {
   }
   return in->spec().get_int_attribute("Orientation", 1);
 }
-void set_max_image_pixels(int64_t pixels) { g_max_pixels.store(pixels); }
 
 bool is_black(const Image& image) {
   return std::all_of(image.pixels.begin(), image.pixels.end(), [](const Vec3& p) { return p.isZero(); });
