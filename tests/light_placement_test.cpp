@@ -71,7 +71,7 @@ Placed place(const Light& truth, const Light& given, const SightLineOf& sight_li
 SightLineOf seen_by_a_probe(const Light& truth) {
   const Vec3 towards = Vec3(0.6f, 0.6f, 0.53f).normalized();
   return [=](size_t) {
-    return std::optional<SightLine>(SightLine{truth.position - 1.5f * towards, towards, std::nullopt});
+    return std::optional<SightLine>(SightLine{truth.position - 1.5f * towards, towards, std::nullopt, std::nullopt});
   };
 }
 
@@ -148,6 +148,22 @@ TEST(LightPlacement, PlacesALampTwoProbesSeeWhereTheirLinesCross) {
     return std::optional<SightLine>(line);
   };
   EXPECT_LE(place(truth, given, two_probes).after_m, 0.01f);
+}
+
+// A lamp whose size a probe sees is put where that size fills the probe's
+// view: given 20 cm off along the line (the distance the photo tells
+// least), it is put there, whatever the photo's search would find.
+TEST(LightPlacement, PutsALampWhereItsSizeSeenByAProbePutsIt) {
+  const Light truth = room_lamp();
+  const SightLine line = *seen_by_a_probe(truth)(0);
+  const SightLineOf sized = [&](size_t) {
+    SightLine with_distance = line;
+    with_distance.distance = 1.5f;
+    return std::optional<SightLine>(with_distance);
+  };
+  Light given = truth;
+  given.position -= 0.2f * line.direction;
+  EXPECT_LE(place(truth, given, sized).after_m, 0.005f);
 }
 
 // Both at once: the lamp's shadows and falloff dominate the photo and it

@@ -58,6 +58,29 @@ TEST(ProbeLights, MeasuresAKnownLampsPowerAndDirection) {
   EXPECT_NEAR(seen->surround.x(), 0.3f, 1e-4f);
 }
 
+// Where the probe resolves a lamp's disc, the size given gives its distance;
+// a lamp a few pixels across is not resolved.
+TEST(ProbeLights, ALampsSizeSeenGivesItsDistance) {
+  const Vec3 lamp(1.0f, 1.5f, 0.8f);                  // 1.97 m away
+  for (const float radius : {0.12f, 0.06f, 0.03f}) {  // 10, 5 and 2.5 pixels across
+    const Probe probe = probe_with_lamp(lamp, radius, 100.0f, Vec3::Constant(0.3f));
+    Light guess;
+    guess.position = lamp + Vec3(0.1f, -0.1f, 0.05f);
+    guess.radius = radius;
+    const auto seen = locate_light_in_probe(probe, guess);
+    ASSERT_TRUE(seen);
+    const auto distance = distance_from_apparent_size(probe, guess, *seen, seen->direction);
+    if (radius < 0.04f) {
+      EXPECT_FALSE(distance) << *distance;
+      continue;
+    }
+    ASSERT_TRUE(distance);
+    std::printf("[ figures  ] a lamp of radius %.2f m 1.97 m away: its size seen puts it %.3f m away\n", radius,
+                *distance);
+    EXPECT_NEAR(*distance, lamp.norm(), 0.01f * lamp.norm());
+  }
+}
+
 // A 512x256 equirect probe at the origin of a uniform environment with an
 // area light's rectangle (radiance P / (4 w h), one-sided) where `panel` has
 // it; one pixel of the rectangle, near a corner, a little brighter than the
@@ -113,6 +136,19 @@ TEST(ProbeLights, MeasuresAnEvenlyBrightPanelWhole) {
   const auto emission = emission_from_probe(probe, panel, *seen);
   ASSERT_TRUE(emission);
   EXPECT_NEAR(emission->x(), 300.0f, 9.0f);  // 3 %
+}
+
+TEST(ProbeLights, APanelsSizeSeenGivesItsDistance) {
+  const Light panel = ceiling_panel(Vec3(0.6f, 0.3f, 1.1f));
+  const Probe probe = probe_with_panel(panel, Vec3::Constant(0.3f));
+  Light guess = panel;
+  guess.position += Vec3(0.1f, 0.05f, 0.0f);
+  const auto seen = locate_light_in_probe(probe, guess);
+  ASSERT_TRUE(seen);
+  const Vec3 to_centre = panel.position - probe.position;
+  const auto distance = distance_from_apparent_size(probe, guess, *seen, to_centre.normalized());
+  ASSERT_TRUE(distance);
+  EXPECT_NEAR(*distance, to_centre.norm(), 0.01f * to_centre.norm());
 }
 
 // A panel seen at a slant fills more of the view with its near half: the
@@ -265,6 +301,29 @@ TEST_P(ReferenceProbe, ImpliesTheLightsTruePower) {
                   fs::path(raw.path).filename().c_str(), emission->x(), emission->y(), emission->z(), truth.x(),
                   truth.y(), truth.z());
       for (int c = 0; c < 3; ++c) EXPECT_NEAR((*emission)[c] / truth[c], 1.0f, 0.05f) << raw.path << " channel " << c;
+    }
+}
+
+// Where the probe resolves a light (the studio's lamp and softbox, the
+// bookcase's lamp), its true size fills what the probe sees at its true
+// distance, to 2 cm.
+TEST_P(ReferenceProbe, ResolvedLightsSizeGivesItsDistance) {
+  const fs::path file = relight::test::reference_scenes_folder() / GetParam() / "scene.json";
+  if (!fs::exists(file)) GTEST_SKIP() << file << " not found (set RELIGHT_SCENES)";
+  const Scene scene = load_scene(file);
+  const RayScene rays(scene.mesh);
+  for (const Light& light : scene.lights)
+    for (const Probe& raw : scene.probes) {
+      const Probe probe = remove_local_geometry_from_probe(raw, rays).value_or(raw);
+      const auto seen = locate_light_in_probe(probe, light);
+      ASSERT_TRUE(seen) << raw.path;
+      const Vec3 to_light = light.position - probe.position;
+      const auto distance = distance_from_apparent_size(probe, light, *seen, to_light.normalized());
+      EXPECT_EQ(distance.has_value(), light.type != LightType::directional) << light.name;
+      if (!distance) continue;
+      std::printf("[ figures  ] %s: %s's size puts it %.3f m from the probe (true %.3f)\n", GetParam().c_str(),
+                  light.name.c_str(), *distance, to_light.norm());
+      EXPECT_NEAR(*distance, to_light.norm(), 0.02f) << light.name;
     }
 }
 

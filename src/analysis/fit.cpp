@@ -170,12 +170,30 @@ std::vector<ProbeSighting> probe_sightings(const RayScene& rays, const std::vect
 // turned by how far apart the two are where it passes nearest the light as
 // given (a slanted rectangle's near half fills more of the view).
 SightLine line_of_sight(const ProbeSighting& sighting, const Light& given) {
-  SightLine line{sighting.probe->position, sighting.seen.direction, std::nullopt};
+  SightLine line{sighting.probe->position, sighting.seen.direction, std::nullopt, std::nullopt};
   Light near = given;
   near.position = line.nearest_to(given.position);
   const Vec3 centre = (near.position - line.origin).normalized();
   line.direction = (line.direction + centre - seen_middle(near, line.origin)).normalized();
   return line;
+}
+
+// How far along `line` the light's size puts it (distance_from_apparent_size),
+// where that is within a factor kSizeTrusted of where it was given: further
+// off, the size given or the place is wrong, and the photo places it.
+std::optional<float> distance_from_size(const ProbeSighting& sighting, const Light& given, const SightLine& line) {
+  constexpr float kSizeTrusted = 1.5f;
+  const auto distance = distance_from_apparent_size(*sighting.probe, given, sighting.seen, line.direction);
+  if (!distance) return std::nullopt;
+  const float given_distance = (line.nearest_to(given.position) - line.origin).norm();
+  if (*distance > kSizeTrusted * given_distance || kSizeTrusted * *distance < given_distance) {
+    spdlog::warn(
+        "{}: light \"{}\", of the size given, fills what this probe sees {:.2f} m from it, but it was given "
+        "{:.2f} m from it: its size or its place is wrong; it is placed from the photo",
+        sighting.probe->path, given.name, *distance, given_distance);
+    return std::nullopt;
+  }
+  return distance;
 }
 
 // The emission that gives what the probes saw (their mean) with the light
@@ -386,13 +404,14 @@ class LightingFit {
 
   // The line from the first probe that measured light `index` through it;
   // where a second probe elsewhere sees it too, the point the two lines
-  // pass nearest.
+  // pass nearest; and how far along it the light's size puts it.
   std::optional<SightLine> sight_line(size_t index) const {
     const auto k = std::find(light_index_.begin(), light_index_.end(), index) - light_index_.begin();
     if (size_t(k) >= sightings_.size() || sightings_[size_t(k)].empty()) return std::nullopt;
     const std::vector<ProbeSighting>& seen = sightings_[size_t(k)];
     const Light& given = scene_.lights[index];
     SightLine line = line_of_sight(seen.front(), given);
+    line.distance = distance_from_size(seen.front(), given, line);
     for (size_t j = 1; j < seen.size() && !line.crossing; ++j) {
       const SightLine other = line_of_sight(seen[j], given);
       constexpr float kApartM = 0.1f;  // probes closer than this see the light along nearly one line
@@ -499,7 +518,9 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
     const EmissionOfPlaced emission_of = [&fit](size_t index, const Light& placed) {
       return fit.emission_when_placed(index, placed);
     };
-    const SightLineOf sight_line_of = [&fit](size_t index) { return fit.sight_line(index); };
+    std::vector<std::optional<SightLine>> sight_lines;
+    for (size_t i = 0; i < scene.lights.size(); ++i) sight_lines.push_back(fit.sight_line(i));
+    const SightLineOf sight_line_of = [&sight_lines](size_t index) { return sight_lines[index]; };
     constexpr int kPlacementPasses = 2;
     for (int pass = 0; pass < kPlacementPasses; ++pass) {
       std::vector<PlacedLight> placed =

@@ -64,10 +64,16 @@ inline Vec3 own_emission(size_t, const Light& placed) { return placed.emission()
 struct SightLine {
   Vec3 origin, direction;                // the probe's position; unit
   std::optional<Vec3> crossing;          // where a second probe's line passes nearest, if one sees it
+  // How far along it the light's size, as the probe sees it, puts the light
+  // (distance_from_apparent_size): the light is placed there, not searched
+  // for along the line.
+  std::optional<float> distance;
   Vec3 nearest_to(const Vec3& p) const;  // the point of the line nearest p, in front of the probe
-  // Where a search along the line starts for a light given at p: the
-  // crossing, or the point of the line nearest p.
-  Vec3 start_for(const Vec3& p) const { return crossing ? nearest_to(*crossing) : nearest_to(p); }
+  // Where a light given at p is placed on the line, or its search along it
+  // starts: where its size puts it, the crossing, or the point nearest p.
+  Vec3 start_for(const Vec3& p) const {
+    return distance ? Vec3(origin + *distance * direction) : crossing ? nearest_to(*crossing) : nearest_to(p);
+  }
 };
 // The line scene.lights[index] is seen along, if a probe sees it.
 using SightLineOf = std::function<std::optional<SightLine>(size_t index)>;
@@ -75,7 +81,8 @@ inline std::optional<SightLine> no_sight_line(size_t) { return std::nullopt; }
 
 // Moves (and turns) the enabled lights of `scene` to where their shadows and
 // a spot's cone best match the photo; a light seen along a sight line is
-// moved along it only, from SightLine::start_for where it was given.
+// moved along it only, from SightLine::start_for where it was given, and
+// one whose distance the line knows is put there and only turned.
 // `indirect`: the illumination (white surfaces) of the scene's lighting as
 // it is, less the light straight from the lights: the environment and the
 // bounce light, held fixed.

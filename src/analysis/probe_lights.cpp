@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/statistics.h"
+
 namespace relight {
 
 namespace {
@@ -58,6 +60,40 @@ Vec3 channel_median(std::vector<Vec3> values) {
 constexpr float kSearchDeg = 10.0f;  // how far the real light may be from where the user put it
 constexpr float kStandOut = 4.0f;    // a light pixel is this many times brighter than its surroundings
 constexpr float kHalf = 0.5f;        // of the brightest pixel: the light's own pixels
+constexpr size_t kMinMiddle = 4;     // pixels wholly inside a light: fewer, and the probe does not resolve it
+constexpr float kEven = 0.8f;        // of its middle's bright pixels, the dim ones: an evenly bright light
+
+// The radiance above the surroundings of the light's evenly bright middle:
+// the median of the region's pixels whose eight neighbours are all at least
+// half as bright as its brightest (no pixel of it partly the light, partly
+// not). Nothing where there are too few such pixels (a light a few pixels
+// across), or they differ (a shaded lamp, a hot spot).
+std::optional<float> middle_radiance(const Probe& probe, const std::vector<size_t>& region, const Vec3& surround) {
+  const Image& img = probe.image;
+  const auto excess = [&](size_t p) { return luminance(img.pixels[p]) - luminance(surround); };
+  float brightest = 0.0f;
+  for (size_t p : region) brightest = std::max(brightest, excess(p));
+  std::vector<char> bright(img.pixels.size(), 0);
+  for (size_t p : region) bright[p] = excess(p) >= kHalf * brightest;
+  const auto is_bright = [&](int x, int y) {
+    if (y < 0 || y >= img.height) return false;
+    if (x < 0 || x >= img.width) {
+      if (probe.mapping != ProbeMapping::equirect) return false;
+      x = (x + img.width) % img.width;  // the panorama's seam
+    }
+    return bright[size_t(y) * img.width + x] != 0;
+  };
+  std::vector<double> middle;
+  for (size_t p : region) {
+    const int x = int(p % img.width), y = int(p / img.width);
+    bool inside = true;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) inside = inside && is_bright(x + dx, y + dy);
+    if (inside) middle.push_back(excess(p));
+  }
+  if (middle.size() < kMinMiddle || percentile(middle, 0.1) < kEven * percentile(middle, 0.9)) return std::nullopt;
+  return float(percentile(middle, 0.5));
+}
 
 }  // namespace
 
@@ -144,6 +180,8 @@ std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Ligh
     weighted_direction += luminance(excess) * region.direction[i];
   }
   seen.direction = weighted_direction.norm() > 0.0f ? Vec3(weighted_direction.normalized()) : centre;
+  if (const auto radiance = middle_radiance(probe, region.index, seen.surround))
+    seen.solid_angle = luminance(seen.irradiance) / *radiance;
   return seen;
 }
 
@@ -176,6 +214,37 @@ std::optional<Vec3> emission_from_probe(const Probe& probe, const Light& light, 
       return Vec3(seen.irradiance * (4.0f * light.size.x() * light.size.y() / omega));
     }
     case LightType::directional: break;
+  }
+  return std::nullopt;
+}
+
+std::optional<float> distance_from_apparent_size(const Probe& probe, const Light& light, const LightInProbe& seen,
+                                                 const Vec3& direction) {
+  if (!seen.solid_angle) return std::nullopt;
+  const float omega = *seen.solid_angle;
+  switch (light.type) {
+    case LightType::point:
+    case LightType::spot: {  // a sphere of radius r at distance d fills 2 pi (1 - cos asin(r / d))
+      const float cos_edge = 1.0f - omega / (2.0f * kPi);
+      if (light.radius <= 0.0f || !(cos_edge > 0.0f && cos_edge < 1.0f)) return std::nullopt;
+      return light.radius / std::sqrt(1.0f - cos_edge * cos_edge);
+    }
+    case LightType::area: {  // the rectangle, facing as given, fills less the farther it is
+      const auto fills = [&](float distance) {
+        Light placed = light;
+        placed.position = probe.position + distance * direction;
+        return area_light_solid_angle(placed, probe.position);
+      };
+      float nearer = 0.01f, farther = 1000.0f;  // m
+      if (!(fills(nearer) > omega && fills(farther) < omega)) return std::nullopt;
+      for (int i = 0; i < 40; ++i) {
+        const float middle = std::sqrt(nearer * farther);
+        (fills(middle) > omega ? nearer : farther) = middle;
+      }
+      return std::sqrt(nearer * farther);
+    }
+    case LightType::directional:
+      break;
   }
   return std::nullopt;
 }

@@ -19,6 +19,10 @@ struct LightInProbe {
   Vec3 irradiance;             // at the probe, facing the light, above the surroundings (W/m^2)
   Vec3 surround;               // median radiance of the ring around the region
   std::vector<size_t> pixels;  // the region (pixel indices)
+  // What the light fills (sr), where the probe resolves it: its irradiance
+  // over the radiance of its evenly bright middle. Nothing for a light only
+  // a few pixels across, or one not evenly bright.
+  std::optional<float> solid_angle;
 };
 
 // The light's region in the probe: pixels within its angular radius plus a
@@ -32,6 +36,14 @@ std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Ligh
 // rectangle seen at a slant it is not the direction of its centre (its near
 // half fills more of the view).
 Vec3 seen_middle(const Light& light, const Vec3& from);
+
+// How far from the probe along `direction` the light, with the size (and an
+// area light's facing) the user gave it, fills the solid angle the probe
+// measured: where the probe resolves a light, its size seen gives its
+// distance as a second probe would. Nothing where the probe does not
+// resolve it or the light has no size.
+std::optional<float> distance_from_apparent_size(const Probe& probe, const Light& light, const LightInProbe& seen,
+                                                 const Vec3& direction);
 
 // The probe with every enabled light's region replaced by its surroundings.
 Probe remove_lights_from_probe(const Probe& probe, const std::vector<Light>& lights);
