@@ -578,27 +578,30 @@ TEST(Shadow, ExactUnshadowedAreaLightIsExactInTheOpenAndDarkInTheUmbra) {
   EXPECT_NEAR(mean.at(0, 0).x(), reference.at(0, 0).x(), 0.01 * reference.at(0, 0).x());
 }
 
-// A coarse sphere (12 segments around, 6 rings) with its vertices' normals
-// radial, as a smooth-shaded model exports it; its vertices alternately
-// `bumps` (a fraction of the radius) out and in, as a model a little off is.
-TriangleMesh coarse_sphere(float bumps) {
-  constexpr int kAround = 12, kRings = 6;
+// A unit sphere of `around` segments and `rings` rings with its vertices'
+// normals radial, as a smooth-shaded model exports it; its vertices
+// alternately `bumps` (a fraction of the radius) out and in, as a model a
+// little off is.
+TriangleMesh uv_sphere(int around, int rings, float bumps) {
   TriangleMesh mesh;
-  for (int r = 0; r <= kRings; ++r)
-    for (int a = 0; a < kAround; ++a) {
-      const float polar = float(kPiD) * float(r) / kRings, azimuth = 2.0f * float(kPiD) * float(a) / kAround;
+  for (int r = 0; r <= rings; ++r)
+    for (int a = 0; a < around; ++a) {
+      const float polar = float(kPiD) * float(r) / rings, azimuth = 2.0f * float(kPiD) * float(a) / around;
       const Vec3 n(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth), std::cos(polar));
       mesh.positions.push_back((1.0f + bumps * float((r + a) % 2 ? 1 : -1)) * n);
       mesh.normals.push_back(n);
     }
-  const auto at = [](int r, int a) { return uint32_t(r * kAround + (a % kAround)); };
-  for (int r = 0; r < kRings; ++r)
-    for (int a = 0; a < kAround; ++a) {
+  const auto at = [around](int r, int a) { return uint32_t(r * around + (a % around)); };
+  for (int r = 0; r < rings; ++r)
+    for (int a = 0; a < around; ++a) {
       if (r > 0) mesh.triangles.push_back({at(r, a), at(r + 1, a), at(r, a + 1)});
-      if (r < kRings - 1) mesh.triangles.push_back({at(r, a + 1), at(r + 1, a), at(r + 1, a + 1)});
+      if (r < rings - 1) mesh.triangles.push_back({at(r, a + 1), at(r + 1, a), at(r + 1, a + 1)});
     }
   return mesh;
 }
+
+// A coarse sphere: 12 segments around, 6 rings.
+TriangleMesh coarse_sphere(float bumps) { return uv_sphere(12, 6, bumps); }
 
 // Over points of the coarse sphere where the sun grazes its smooth surface
 // (cosine 0.05-0.4 to the shading normal): the mean direct light over the
@@ -657,6 +660,35 @@ TEST(Shadow, ACoarseSmoothSphereIsLitAsTheSmoothSphereWhereTheLightGrazesIt) {
       even.of_smooth, 100 * even.below_facet, uneven.of_smooth, uneven_on_facets.of_smooth);
   EXPECT_GT(uneven.of_smooth, 0.95);
   EXPECT_GT(uneven_on_facets.of_smooth, 0.95);
+}
+
+// A finer sphere whose vertices stand alternately out and in by half its
+// edge (a smooth-shaded ball modelled a centimetre off, its triangles a
+// centimetre across): neighbouring facets turn by up to 80 degrees, yet
+// under a white sky it is lit as the smooth sphere is, by all of the sky
+// (radiance 1): neither the sky's shadow rays nor the paths' bounce rays
+// stop on its own facets (a bounce that did saw the ball itself, and
+// speckled it).
+TEST(Shadow, ASmoothSphereWhoseVerticesAreOffByHalfAnEdgeSeesAllOfTheSky) {
+  const TriangleMesh mesh = uv_sphere(48, 24, 0.06f);
+  const RayScene rays(mesh);
+  Lighting lighting;
+  lighting.environment = Environment::constant(Vec3::Ones());
+  IntegratorOptions options;
+  options.max_bounces = 0;
+  const Integrator integrator(rays, lighting, nullptr, options);
+  double sum = 0.0;
+  int samples = 0;
+  for (float x = -0.8f; x <= 0.8f; x += 0.05f)
+    for (float z = -0.8f; z <= 0.8f; z += 0.05f) {
+      SurfacePoint p;
+      if (!rays.intersect(Vec3(x, 3, z), Vec3(0, -1, 0), p)) continue;
+      Rng rng(1, uint64_t(samples));
+      for (int k = 0; k < 16; ++k, ++samples) sum += integrator.illumination(p, rng).x();
+    }
+  ASSERT_GT(samples, 1000);
+  std::printf("a sphere 6 %% uneven under a white sky: %.3f of the sky's light\n", sum / samples);
+  EXPECT_GT(sum / samples, 0.99);  // 0.975 when a path's bounce stopped on the ball's own facets
 }
 
 // What a smooth surface passes over is only itself: a plate of the same

@@ -159,7 +159,8 @@ Vec3 Integrator::follow_path(const SurfacePoint& start, Rng& rng, const Vec2* fi
     }
     if (d.dot(p.geometric_normal) <= 0.0f) break;
     SurfacePoint next;
-    if (!scene_.intersect(scene_.offset_origin(p, d), d, next)) {
+    // It leaves as a shadow ray does, passing over the smooth surface it leaves.
+    if (!scene_.intersect(scene_.shadow_ray(p, d, std::numeric_limits<float>::infinity()), next)) {
       if (!env.is_black()) {
         // The lobe's ray has no environment sample to share the direction with.
         const float mis = by_lobe ? 1.0f : power_heuristic(p.normal.dot(d) * kInvPi, env.pdf(probe, d));

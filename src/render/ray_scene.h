@@ -84,6 +84,11 @@ class RayScene {
   // Closest surface along the ray (dir unit) in (0, tmax); false if none.
   bool intersect(const Vec3& origin, const Vec3& dir, SurfacePoint& hit,
                  float tmax = std::numeric_limits<float>::infinity()) const;
+  // The same for a ray leaving a surface as shadow_ray() sends it (dir
+  // unit): the smooth surface it leaves is passed over, as occluded(ray)
+  // does. A path's bounce off a ball whose facets stand a little off its
+  // normals then sees the room, not the ball's own neighbouring facets.
+  bool intersect(const ShadowRay& ray, SurfacePoint& hit) const;
   // Where the ray meets the plane of triangle `prim`, as intersect would
   // report a hit on it (the G-buffer recomputes its samples so rather than
   // keep them); false where the ray runs along the plane.
