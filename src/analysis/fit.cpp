@@ -518,6 +518,7 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
     const EmissionOfPlaced emission_of = [&fit](size_t index, const Light& placed) {
       return fit.emission_when_placed(index, placed);
     };
+    // Once for both passes: a light's line and its warnings do not change.
     std::vector<std::optional<SightLine>> sight_lines;
     for (size_t i = 0; i < scene.lights.size(); ++i) sight_lines.push_back(fit.sight_line(i));
     const SightLineOf sight_line_of = [&sight_lines](size_t index) { return sight_lines[index]; };

@@ -324,7 +324,8 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
   std::vector<Colours> given_direct, direct;
   for (size_t k = 0; k < enabled.size(); ++k) {
     const Light& light = scene.lights[enabled[k]];
-    searched.emplace_back(light, sight_line_of(enabled[k]), rays, options);
+    const std::optional<SightLine> sight = sight_line_of(enabled[k]);
+    searched.emplace_back(light, sight, rays, options);
     const Light first = searched.back().at({});
     kept.push_back(searched.back().placed_by_probe() ? first : light);
     given_direct.push_back(direct_of(k, kept.back()));
@@ -333,8 +334,7 @@ std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& ra
       spdlog::info(
           "fit: {} is placed where its size fills what a probe sees, {:.2f} m from the probe ({:.1f} cm from "
           "where it was given)",
-          light.name, (first.position - sight_line_of(enabled[k])->origin).norm(),
-          100.0f * (first.position - light.position).norm());
+          light.name, (first.position - sight->origin).norm(), 100.0f * (first.position - light.position).norm());
     else if (first.position != light.position)
       spdlog::info(
           "fit: {} is searched for along the line a probe sees it along, from {:.1f} cm from where it was "
