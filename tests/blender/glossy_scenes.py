@@ -17,6 +17,7 @@
 #   matte_bookcase   the public bookcase, unchanged
 #   glossy_studio_b  studio; ball (ball_paint) roughness 0.35 specular 0.8, stool (stool_wood) 0.15
 #   glossy_outdoor   outdoor; the ten column caps (column_cap) roughness 0.25 specular 0.6
+#   glossy_floor_studio, glossy_floor_bookcase  the floor alone, roughness 0.12
 # Glossy surfaces: specular 0.5, distribution GGX (single scattering; Blender
 # 3.4's default, set explicitly). For the glossy scenes the script then adds
 # "materials" {OBJECT: {roughness, specular}} to OUT/scene.json (keys: the
@@ -48,6 +49,9 @@ GLOSSY = {
     'glossy_studio_b': ('studio', {'ball': ('ball_paint', 0.35, 0.8), 'stool': ('stool_wood', 0.15, 0.5)}),
     'glossy_outdoor': ('outdoor', {'cap_%s_%d' % (row, i): ('column_cap', 0.25, 0.6)
                                    for row in 'sn' for i in range(5)}),
+    # A glossy floor alone, sharper than the committed scenes' (0.3): the lights' highlights on it.
+    'glossy_floor_studio': ('studio', {'floor': ('concrete', 0.12, 0.5)}),
+    'glossy_floor_bookcase': ('bookcase', {'floor': ('floor_tiles', 0.12, 0.5)}),
 }
 MATTE = {'matte_studio': 'studio', 'matte_bookcase': 'bookcase'}
 
