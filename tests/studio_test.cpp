@@ -187,6 +187,19 @@ class StudioTest : public QObject {
     light.direction = (hit.position - light.position).normalized();
     return light;
   }
+  // Light 0 made a 1.6 x 1 m area light facing down where it is, selected
+  // and framed in the geometry view.
+  Light selected_framed_area_light() {
+    Light area = document().light(0);
+    area.type = LightType::area;
+    area.direction = Vec3(0, 0, -1);
+    area.up = Vec3(0, 1, 0);
+    area.size = Vec2(1.6f, 1.0f);
+    document().set_light(0, area);
+    window_->select_light(0);
+    window_->geometry_view().frame_selected();
+    return area;
+  }
   // Where light `index`'s dot is in the geometry view.
   QPoint dot_of(int index) {
     GeometryView& view = window_->geometry_view();
@@ -1268,15 +1281,8 @@ class StudioTest : public QObject {
   // The geometry view draws an area light's rectangle with its corners
   // where light_shape puts them.
   void the_geometry_view_draws_an_area_lights_rectangle() {
-    Light area = document().light(0);
-    area.type = LightType::area;
-    area.direction = Vec3(0, 0, -1);
-    area.up = Vec3(0, 1, 0);
-    area.size = Vec2(1.6f, 1.0f);
-    document().set_light(0, area);
-    window_->select_light(0);
+    const Light area = selected_framed_area_light();
     GeometryView& view = window_->geometry_view();
-    view.frame_selected();
     keep_picture("area_rectangle", view);
     const QImage image = view.grab().toImage();
     const Vec3 eye = view.eye_position();
@@ -1400,15 +1406,8 @@ class StudioTest : public QObject {
   // `up` points to, dragged turns the rectangle about its normal towards the
   // point dragged to: `up` follows, the aim stays, one undo step.
   void dragging_an_area_lights_circle_turns_it_about_its_normal() {
-    Light area = document().light(0);
-    area.type = LightType::area;
-    area.direction = Vec3(0, 0, -1);
-    area.up = Vec3(0, 1, 0);
-    area.size = Vec2(1.6f, 1.0f);
-    document().set_light(0, area);
-    window_->select_light(0);
+    const Light area = selected_framed_area_light();
     GeometryView& view = window_->geometry_view();
-    view.frame_selected();
     const auto circle = view.project(*turn_handle_point(area));
     QVERIFY(circle.has_value());
     QVERIFY(shows_colour(view.grab().toImage(), *circle + QPointF(5, 0), light_colour(true, true)));
