@@ -17,9 +17,7 @@ struct MegapixelRoom {
   RayScene rays{scene.mesh};
   GBuffer gbuffer{scene.camera, rays, 1, 1, "room"};
   PhotoSamples photo = [this] {
-    Lighting lighting;
-    lighting.lights = scene.lights;
-    lighting.environment = Environment::constant(scene.background);
+    const Lighting lighting = example::room_lighting(scene, scene.lights);
     const example::RoomAlbedo albedo = example::room_albedo();
     const Integrator integrator(rays, lighting, &albedo);
     return photo_samples(synthesize_photo(gbuffer, scene.camera, integrator, albedo, 16, 1, Progress::silent()),

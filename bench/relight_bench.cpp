@@ -15,12 +15,7 @@ struct Room {
   Scene scene = example::room_scene(640, 480);
   RayScene rays{scene.mesh};
   GBuffer gbuffer{scene.camera, rays, 9, 1, "room"};
-  Lighting lighting = [this] {
-    Lighting l;
-    l.lights = scene.lights;
-    l.environment = Environment::constant(scene.background);
-    return l;
-  }();
+  Lighting lighting = example::room_lighting(scene, scene.lights);
 };
 
 Room& room() {

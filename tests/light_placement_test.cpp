@@ -31,9 +31,7 @@ std::vector<Placed> place(const std::vector<Light>& truths, const std::vector<Li
   const RayScene rays(scene.mesh);
   const GBuffer gbuffer(scene.camera, rays, 4, 5, "room");
   const example::RoomAlbedo albedo = example::room_albedo();
-  Lighting lighting;
-  lighting.lights = truths;
-  lighting.environment = Environment::constant(scene.background);
+  Lighting lighting = example::room_lighting(scene, truths);
   scene.photo =
       synthesize_photo(gbuffer, scene.camera, Integrator(rays, lighting, &albedo), albedo, 64, 3, Progress::silent());
 

@@ -320,9 +320,7 @@ TEST(LdrPhoto, ClippedPixelsTakeTheirSurfacesAlbedo) {
   options.strategy = Strategy::lights;
   options.paths_per_pixel = 16;
   const GBuffer gbuffer = scene_gbuffer(scene, rays, options);
-  Lighting lighting;
-  lighting.lights = scene.lights;
-  lighting.environment = Environment::constant(scene.background);
+  const Lighting lighting = example::room_lighting(scene, scene.lights);
   const Integrator integrator(rays, lighting, &albedo, IntegratorOptions{});
   const Image radiance = synthesize_photo(gbuffer, scene.camera, integrator, albedo, 64, 99, Progress::silent());
   test::SceneFolder f("ldr_clipped_room");

@@ -86,9 +86,7 @@ class RoomRegistration : public ::testing::Test {
     rays_ = new RayScene(scene_->mesh);
     const GBuffer gbuffer(scene_->camera, *rays_, 4, 5, "room");
     const example::RoomAlbedo albedo = example::room_albedo();
-    Lighting lighting;
-    lighting.lights = scene_->lights;
-    lighting.environment = Environment::constant(scene_->background);
+    const Lighting lighting = example::room_lighting(*scene_, scene_->lights);
     scene_->photo = synthesize_photo(gbuffer, scene_->camera, Integrator(*rays_, lighting, &albedo), albedo, 16, 3,
                                      Progress::silent());
   }
