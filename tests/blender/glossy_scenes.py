@@ -49,7 +49,8 @@ GLOSSY = {
     'glossy_studio_b': ('studio', {'ball': ('ball_paint', 0.35, 0.8), 'stool': ('stool_wood', 0.15, 0.5)}),
     'glossy_outdoor': ('outdoor', {'cap_%s_%d' % (row, i): ('column_cap', 0.25, 0.6)
                                    for row in 'sn' for i in range(5)}),
-    # A glossy floor alone, sharper than the committed scenes' (0.3): the lights' highlights on it.
+    # A glossy floor alone, sharper than the committed scenes' (0.3); every light's mirror point on it is out
+    # of the frame, so it mirrors the room (docs/benchmarks.md, "Materials from the photo").
     'glossy_floor_studio': ('studio', {'floor': ('concrete', 0.12, 0.5)}),
     'glossy_floor_bookcase': ('bookcase', {'floor': ('floor_tiles', 0.12, 0.5)}),
 }
