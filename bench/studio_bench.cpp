@@ -22,6 +22,7 @@
 #include "core/background_work.h"
 #include "core/error.h"
 #include "core/statistics.h"
+#include "gui/geometry_overlay.h"
 #include "gui/geometry_view.h"
 #include "gui/sky_strip.h"
 #include "gui/tone_map.h"
@@ -65,6 +66,17 @@ void BM_DisplayFrame(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * frame.width * frame.height);
 }
 BENCHMARK(BM_DisplayFrame)->Args({640, 480})->Args({1280, 720})->Unit(benchmark::kMillisecond);
+
+// The geometry's edges drawn over the photo (Ctrl+G), made once per opened
+// analysis: the example room at the photo's size, the analysis's G-buffer.
+void BM_GeometryEdges(benchmark::State& state) {
+  const Scene scene = example::room_scene(int(state.range(0)), int(state.range(1)));
+  const RayScene rays(scene.mesh);
+  const GBuffer gbuffer(scene.camera, rays, AnalysisOptions().gbuffer_samples, 1, "room");
+  for (auto _ : state) benchmark::DoNotOptimize(geometry_edges_image(gbuffer));
+  state.SetItemsProcessed(state.iterations() * gbuffer.width() * gbuffer.height());
+}
+BENCHMARK(BM_GeometryEdges)->Args({640, 480})->Args({3264, 2448})->Unit(benchmark::kMillisecond);
 
 void BM_GeometryViewOrbit(benchmark::State& state) {
   static const std::shared_ptr<StudioScene> scene = bench_scene();

@@ -1,7 +1,9 @@
 // oneTBB before any Qt header: Qt's `emit` macro breaks TBB's headers.
-#include "gui/geometry_overlay.h"
-
+// clang-format off
 #include <tbb/parallel_for.h>
+
+#include "gui/geometry_overlay.h"
+// clang-format on
 
 #include <vector>
 

@@ -16,7 +16,6 @@
 
 #include "core/error.h"
 #include "gui/environment_entry.h"
-#include "gui/geometry_overlay.h"
 #include "gui/geometry_view.h"
 #include "gui/light_commands.h"
 #include "gui/light_details.h"
@@ -408,7 +407,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
 void MainWindow::show_analysis() {
   photo_view().set_photo(std::make_shared<const Image>(scene_->analysed->scene().photo));
   photo_view().set_relit(nullptr);
-  photo_view().set_geometry_edges(geometry_edges_image(scene_->analysed->gbuffer()));
+  photo_view().set_geometry_edges(scene_->geometry_edges);
   QString opened =
       scene_->preview ? tr("A preview analysis (a reduced photo, few paths); the full one follows")
       : scene_->from_cache

@@ -5,6 +5,7 @@
 #include "analysis/analysis_folder.h"
 #include "analysis/strategy.h"
 #include "core/error.h"
+#include "gui/geometry_overlay.h"
 #include "io/scene_io.h"
 
 namespace relight::gui {
@@ -15,9 +16,12 @@ fs::path analysis_cache_folder(const fs::path& scene_path) {
   return fs::path(scene_path).replace_extension(".analysis");
 }
 
-std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const AnalysisOptions& options,
-                                               Progress& progress, const fs::path& analysis_folder,
-                                               int64_t preview_above_pixels) {
+namespace {
+
+// The scene and its analysis, read or made.
+std::unique_ptr<StudioScene> analysed_studio_scene(const fs::path& scene_path, const AnalysisOptions& options,
+                                                   Progress& progress, const fs::path& analysis_folder,
+                                                   int64_t preview_above_pixels) {
   auto s = std::make_unique<StudioScene>();
   Scene scene = load_scene(scene_path, progress);
   if (!analysis_folder.empty()) {
@@ -50,6 +54,17 @@ std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const
                  e.what());
   }
   s->analysed = std::move(analysed);
+  return s;
+}
+
+}  // namespace
+
+std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const AnalysisOptions& options,
+                                               Progress& progress, const fs::path& analysis_folder,
+                                               int64_t preview_above_pixels) {
+  std::unique_ptr<StudioScene> s =
+      analysed_studio_scene(scene_path, options, progress, analysis_folder, preview_above_pixels);
+  s->geometry_edges = geometry_edges_image(s->analysed->gbuffer());
   return s;
 }
 
