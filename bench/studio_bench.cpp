@@ -10,7 +10,10 @@
 #include <benchmark/benchmark.h>
 
 #include <QApplication>
+#include <QElapsedTimer>
+#include <QEventLoop>
 #include <QImage>
+#include <QTimer>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -18,14 +21,17 @@
 #include <functional>
 #include <thread>
 
+#include "analysis/analysis_folder.h"
 #include "analysis/strategy.h"
 #include "core/background_work.h"
 #include "core/error.h"
 #include "core/statistics.h"
 #include "gui/geometry_overlay.h"
 #include "gui/geometry_view.h"
+#include "gui/main_window.h"
 #include "gui/sky_strip.h"
 #include "gui/tone_map.h"
+#include "io/image_io.h"
 #include "io/scene_io.h"
 #include "room_scene.h"
 
@@ -189,6 +195,70 @@ BENCHMARK(BM_DragWhileAnalysing)
     ->DenseRange(0, 2)
     ->Iterations(120)
     ->MeasureProcessCPUTime()
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+// The example room with its photo enlarged to w x h (each pixel the
+// nearest of the original's), analysed quickly into SCENE/analysis: what
+// relight studio opens in BM_OpenLargePhoto.
+fs::path large_room(int w, int h) {
+  const fs::path room = fs::path(RELIGHT_SOURCE_DIR) / "examples" / "room";
+  const fs::path folder = fs::temp_directory_path() / ("relight_studio_bench_room_" + std::to_string(w));
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  for (const char* f : {"scene.json", "geometry.obj"}) fs::copy_file(room / f, folder / f);
+  const Image small = read_image(room / "photo.exr");
+  Image photo(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) photo.at(x, y) = small.at(x * small.width / w, y * small.height / h);
+  write_exr(folder / "photo.exr", photo);
+  Scene scene = load_scene(folder / "scene.json");
+  AnalysisOptions options;
+  options.strategy = default_strategy(scene);
+  options.paths_per_pixel = 1;
+  options.interreflection = false;
+  const auto analysed = AnalysedScene::analyse(std::move(scene), options, Progress::silent());
+  save_analysis(folder / "analysis", analysed->analysis(), analysed->scene());
+  return folder;
+}
+
+// relight studio opening an analysed photo of w x h: the time until the
+// scene is shown, and the longest the window's event loop went without
+// turning meanwhile (a timer asks every 5 ms): how long the window froze.
+void BM_OpenLargePhoto(benchmark::State& state) {
+  const fs::path folder = large_room(int(state.range(0)), int(state.range(1)));
+  StudioOptions options;
+  options.session.backend = Backend::cpu;
+  options.remember_recent = false;
+  for (auto _ : state) {
+    MainWindow window(options);
+    window.resize(1200, 800);
+    window.show();
+    QElapsedTimer clock, since_tick;
+    qint64 longest_stall = 0;
+    QTimer ticks;
+    QObject::connect(&ticks, &QTimer::timeout, [&] { longest_stall = std::max(longest_stall, since_tick.restart()); });
+    QEventLoop loop;
+    QObject::connect(&window, &MainWindow::sceneOpened, &loop, &QEventLoop::quit);
+    QObject::connect(&window, &MainWindow::openFailed, &loop, &QEventLoop::quit);
+    clock.start();
+    since_tick.start();
+    ticks.start(5);
+    window.open_scene(QString::fromStdString((folder / "scene.json").string()), {},
+                      QString::fromStdString((folder / "analysis").string()));
+    loop.exec();
+    // What the window does right after the scene is in (its first frame).
+    QTimer::singleShot(500, &loop, &QEventLoop::quit);
+    loop.exec();
+    state.SetIterationTime(double(clock.elapsed()) / 1e3);
+    state.counters["longest_stall_ms"] = double(longest_stall);
+  }
+  fs::remove_all(folder);
+}
+BENCHMARK(BM_OpenLargePhoto)
+    ->Args({640, 480})
+    ->Args({3264, 2448})
+    ->Iterations(1)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 

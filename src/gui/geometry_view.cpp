@@ -41,25 +41,35 @@ Vec3 any_perpendicular(const Vec3& n) {
   return a;
 }
 
+// The pixels seen_bounds looks at, at most: every pixel of a photo up to
+// 640 x 480, every n-th along both axes of a larger one. Each is a ray (the
+// compact G-buffer recomputes it), on the window's thread: at every pixel of
+// an 8-Mpixel photo this took 3.5 s (docs/benchmarks.md, BM_OpenLargePhoto).
+constexpr double kSeenBoundsPixels = 640.0 * 480.0;
+
 // What the photo's camera sees, per axis between the 10th and 90th
 // percentile of its pixels' surfaces, with the lights that have a position
 // and the camera.
 Eigen::AlignedBox3f seen_bounds(const LightingDocument& document) {
   constexpr double kTail = 0.10;
   const GBuffer& g = document.studio_scene().analysed->gbuffer();
+  const int stride = std::max(1, int(std::ceil(std::sqrt(double(g.width()) * double(g.height()) / kSeenBoundsPixels))));
   std::array<std::vector<float>, 3> axes;
-  for (int y = 0; y < g.height(); ++y)
-    for (int x = 0; x < g.width(); ++x)
+  for (int y = 0; y < g.height(); y += stride)
+    for (int x = 0; x < g.width(); x += stride)
       if (const GBufferSample s = g.central(x, y); s.hit)
         for (int a = 0; a < 3; ++a) axes[size_t(a)].push_back(s.surface.position[a]);
   Eigen::AlignedBox3f box;
   if (!axes[0].empty()) {
     Vec3 lo, hi;
+    const auto percentile = [](std::vector<float>& v, double share) {
+      const auto at = v.begin() + std::ptrdiff_t(share * double(v.size() - 1));
+      std::nth_element(v.begin(), at, v.end());
+      return *at;
+    };
     for (int a = 0; a < 3; ++a) {
-      std::vector<float>& v = axes[size_t(a)];
-      std::sort(v.begin(), v.end());
-      lo[a] = v[size_t(kTail * double(v.size() - 1))];
-      hi[a] = v[size_t((1.0 - kTail) * double(v.size() - 1))];
+      lo[a] = percentile(axes[size_t(a)], kTail);
+      hi[a] = percentile(axes[size_t(a)], 1.0 - kTail);
     }
     box.extend(lo), box.extend(hi);
   }
