@@ -65,8 +65,7 @@ std::vector<Vec3> geometry_edges(const Camera& camera, const RayScene& rays, con
           if (nx >= w || ny >= h) continue;
           const GBufferSample &a = row[size_t(x)], &b = dy ? next[size_t(x)] : row[size_t(nx)];
           if (a.hit) any_hit = true;
-          if (!a.hit && !b.hit) continue;
-          if (a.hit && b.hit && GBuffer::same_surface(a.surface, b.surface)) continue;
+          if (!GBuffer::edge_between(a, b)) continue;
           const bool a_near = a.hit && (!b.hit || a.surface.distance <= b.surface.distance);
           const SurfacePoint& near = a_near ? a.surface : b.surface;
           Vec2 from = Vec2(x + 0.5f, y + 0.5f), to = Vec2(nx + 0.5f, ny + 0.5f);

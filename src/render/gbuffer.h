@@ -50,6 +50,11 @@ class GBuffer {
   bool same_surface(int x, int y, int nx, int ny) const;
   // The same test on two surface points (both hit).
   static bool same_surface(const SurfacePoint& a, const SurfacePoint& b);
+  // Whether an edge of the geometry lies between two samples: they see
+  // different surfaces, or one sees geometry and the other none.
+  static bool edge_between(const GBufferSample& a, const GBufferSample& b) {
+    return a.hit != b.hit || (a.hit && !same_surface(a.surface, b.surface));
+  }
 
   // Whether every sample of the pixel sees the surface its centre-most
   // sample sees (no silhouette, crease or background within it).
