@@ -19,7 +19,7 @@ LightingDocument::LightingDocument(std::shared_ptr<const StudioScene> scene, con
     : QObject(parent),
       scene_(std::move(scene)),
       rig_(rig),
-      session_(std::make_unique<RelightSession>(*scene_->analysed, rig_, options)),
+      session_(std::make_unique<RelightSession>(*scene_->analysed, rig_, options, scene_->session_view)),
       sky_{rig.environment} {}
 
 LightingDocument::~LightingDocument() = default;
@@ -96,7 +96,7 @@ void LightingDocument::reset_rig(const Rig& rig) {
 
 void LightingDocument::replace_scene(std::shared_ptr<const StudioScene> scene, const SessionOptions& options) {
   // The new session before the old scene goes: the old session reads it.
-  session_ = std::make_unique<RelightSession>(*scene->analysed, shown_rig(), options);
+  session_ = std::make_unique<RelightSession>(*scene->analysed, shown_rig(), options, scene->session_view);
   scene_ = std::move(scene);
 }
 

@@ -34,6 +34,8 @@ class LightingDocument : public QObject {
   Q_OBJECT
 
  public:
+  // The session draws on the scene's session_view: options' width and
+  // height are not used.
   LightingDocument(std::shared_ptr<const StudioScene> scene, const Rig& rig, const SessionOptions& options,
                    QObject* parent = nullptr);
   ~LightingDocument() override;

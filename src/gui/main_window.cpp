@@ -38,13 +38,6 @@ constexpr int kMaxRecent = 8;
 const QString kRecentScenes = QStringLiteral("recent_scenes");
 const QString kRecentRigs = QStringLiteral("recent_rigs");
 
-// The view size for a photo: its own up to max_width, else scaled down.
-void choose_view_size(const Image& photo, int max_width, SessionOptions& options) {
-  if (photo.width <= max_width) return;
-  options.width = max_width;
-  options.height = std::max(1, int(std::lround(double(photo.height) * max_width / photo.width)));
-}
-
 // "NAME copy", or "NAME copy N" with the first N from 2 that no light of
 // `rig` is named; a copy of a copy counts on from the original's name.
 std::string copy_name(const Rig& rig, const std::string& name) {
@@ -306,14 +299,13 @@ void MainWindow::run_task(const QString& label, BackgroundTask::Work work, std::
 void MainWindow::open_scene(const QString& scene_path, const QString& rig_path, const QString& analysis_folder) {
   if (busy()) return;
   auto loaded = std::make_shared<std::shared_ptr<const StudioScene>>();
-  const AnalysisOptions analysis = options_.analysis;
-  const std::string path = scene_path.toStdString(), folder = analysis_folder.toStdString();
-  const int64_t preview_above = options_.preview_above_pixels;
+  StudioLoad load = studio_load();
+  load.analysis_folder = analysis_folder.toStdString();
+  load.preview_above_pixels = options_.preview_above_pixels;
+  const std::string path = scene_path.toStdString();
   run_task((analysis_folder.isEmpty() ? tr("Analysing %1\u2026") : tr("Opening %1\u2026"))
                .arg(QFileInfo(scene_path).fileName()),
-           [loaded, analysis, path, folder, preview_above](Progress& progress) {
-             *loaded = load_studio_scene(path, analysis, progress, folder, preview_above);
-           },
+           [loaded, load, path](Progress& progress) { *loaded = load_studio_scene(path, load, progress); },
            [this, loaded, scene_path, rig_path](const QString& error) {
              if (!error.isEmpty()) {
                show_error(error == "cancelled" ? tr("Opening %1 was cancelled.").arg(scene_path) : error);
@@ -328,11 +320,11 @@ void MainWindow::open_scene(const QString& scene_path, const QString& rig_path, 
 
 void MainWindow::replace_preview() {
   auto loaded = std::make_shared<std::shared_ptr<const StudioScene>>();
-  const AnalysisOptions analysis = options_.analysis;
+  const StudioLoad load = studio_load();
   const std::string path = scene_path_.toStdString();
   run_task(
       tr("Analysing %1 in full (the preview meanwhile)\u2026").arg(QFileInfo(scene_path_).fileName()),
-      [loaded, analysis, path](Progress& progress) { *loaded = load_studio_scene(path, analysis, progress); },
+      [loaded, load, path](Progress& progress) { *loaded = load_studio_scene(path, load, progress); },
       [this, loaded](const QString& error) {
         if (!error.isEmpty()) {
           statusBar()->showMessage(
@@ -344,17 +336,18 @@ void MainWindow::replace_preview() {
           return;
         }
         scene_ = *loaded;
-        document_->replace_scene(scene_, session_options_for(*scene_));
+        document_->replace_scene(scene_, options_.session);
         show_analysis();
         select_light(selected_);
         emit fullAnalysisDone({});
       });
 }
 
-SessionOptions MainWindow::session_options_for(const StudioScene& scene) const {
-  SessionOptions session = options_.session;
-  choose_view_size(scene.analysed->scene().photo, options_.max_view_width, session);
-  return session;
+StudioLoad MainWindow::studio_load() const {
+  StudioLoad load;
+  load.analysis = options_.analysis;
+  load.max_view_width = options_.max_view_width;
+  return load;
 }
 
 void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const QString& scene_path,
@@ -374,7 +367,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   photo_view().set_document(nullptr);
   document_.reset();
   scene_ = std::move(scene);
-  document_ = std::make_unique<LightingDocument>(scene_, rig, session_options_for(*scene_));
+  document_ = std::make_unique<LightingDocument>(scene_, rig, options_.session);
   scene_path_ = scene_path;
   rig_path_ = loaded_rig_path;
 

@@ -31,7 +31,7 @@ class TaskStatus;
 
 struct StudioOptions {
   AnalysisOptions analysis;   // for a scene without a cached analysis
-  SessionOptions session;     // its backend draws moving lights; its view size is chosen from the photo
+  SessionOptions session;     // its backend draws moving lights; its view size is chosen from the photo (StudioLoad)
   int max_view_width = 1280;  // larger photos are shown (and edited) smaller; an export is always full size
   // A photo of more pixels than this is shown with a preview analysis first
   // while the full one runs (0: never).
@@ -149,7 +149,8 @@ class MainWindow : public QMainWindow {
   // Says in the status bar what relight studio does with the rig's animated
   // lights, where it has any.
   void note_animation(const Rig& rig);
-  SessionOptions session_options_for(const StudioScene& scene) const;
+  // How this window opens a scene (its analysis options and view width).
+  StudioLoad studio_load() const;
   // Why a scene made from the open one cannot be written to `out_path` now
   // (the full analysis still running, or the open scene named as the
   // output), `doing` what is asked for; empty where it can.

@@ -2,6 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "analysis/analysis_folder.h"
 #include "analysis/strategy.h"
 #include "core/error.h"
@@ -59,12 +62,18 @@ std::unique_ptr<StudioScene> analysed_studio_scene(const fs::path& scene_path, c
 
 }  // namespace
 
-std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const AnalysisOptions& options,
-                                               Progress& progress, const fs::path& analysis_folder,
-                                               int64_t preview_above_pixels) {
+std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const StudioLoad& load, Progress& progress) {
   std::unique_ptr<StudioScene> s =
-      analysed_studio_scene(scene_path, options, progress, analysis_folder, preview_above_pixels);
+      analysed_studio_scene(scene_path, load.analysis, progress, load.analysis_folder, load.preview_above_pixels);
   s->geometry_edges = geometry_edges_image(s->analysed->gbuffer());
+  // A photo wider than max_view_width is shown (and edited) that wide; 0, 0: at its own size.
+  const Image& photo = s->analysed->scene().photo;
+  int width = 0, height = 0;
+  if (load.max_view_width > 0 && photo.width > load.max_view_width) {
+    width = load.max_view_width;
+    height = std::max(1, int(std::lround(double(photo.height) * width / photo.width)));
+  }
+  s->session_view = std::make_shared<const RelightView>(*s->analysed, width, height);
   return s;
 }
 

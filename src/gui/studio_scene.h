@@ -10,6 +10,7 @@
 
 #include "analysis/analysed_scene.h"
 #include "core/progress.h"
+#include "relight/view.h"
 #include "render/ray_scene.h"
 
 namespace relight::gui {
@@ -23,23 +24,36 @@ struct StudioScene {
   // (geometry_overlay.h): made with the analysis, off the window's thread
   // (0.36 s at 8 Mpixel).
   QImage geometry_edges;
+  // The relighting session's view (RelightSession): the photo's size, or
+  // smaller for a photo wider than StudioLoad::max_view_width. Made with the
+  // analysis, off the window's thread (its own G-buffer and the analysis's
+  // layers resampled: seconds at 8 Mpixel). Declared after `analysed`, which
+  // it reads.
+  std::shared_ptr<const RelightView> session_view;
+};
+
+// How load_studio_scene reads or makes a scene's analysis and view.
+struct StudioLoad {
+  AnalysisOptions analysis;               // a scene without an analysis is analysed with these
+  std::filesystem::path analysis_folder;  // an analysis `relight analyze` made; empty: the cache folder's
+  int64_t preview_above_pixels = 0;       // a larger photo gets a preview analysis first (0: never)
+  int max_view_width = 0;                 // a wider photo is shown and edited this wide (0: at its own size)
 };
 
 // The cache folder of a scene: "room/scene.json" -> "room/scene.analysis".
 std::filesystem::path analysis_cache_folder(const std::filesystem::path& scene_path);
 
-// Loads scene.json and its analysis: from `analysis_folder` where one is
-// given (an analysis `relight analyze` made; a missing, stale or mixed one is
-// an InputError, never analysed over); else from the cache folder where it
-// holds one for these inputs, else analysed now with `options` (the strategy
-// the scene's data suggests) and written to the cache. A cache that cannot be
-// written is only a warning. Throws InputError for a bad scene, Cancelled if
-// progress is cancelled. Where it would analyse a photo of over
-// `preview_above_pixels` (0: never) it makes a preview analysis instead
-// (not cached; StudioScene::preview), for a full one to follow. The
-// geometry's edges are drawn with it.
-std::unique_ptr<StudioScene> load_studio_scene(const std::filesystem::path& scene_path, const AnalysisOptions& options,
-                                               Progress& progress, const std::filesystem::path& analysis_folder = {},
-                                               int64_t preview_above_pixels = 0);
+// Loads scene.json and its analysis: from `load.analysis_folder` where one
+// is given (a missing, stale or mixed one is an InputError, never analysed
+// over); else from the cache folder where it holds one for these inputs,
+// else analysed now with `load.analysis` (the strategy the scene's data
+// suggests) and written to the cache. A cache that cannot be written is only
+// a warning. Throws InputError for a bad scene, Cancelled if progress is
+// cancelled. Where it would analyse a photo of over
+// `load.preview_above_pixels` it makes a preview analysis instead (not
+// cached; StudioScene::preview), for a full one to follow. The geometry's
+// edges and the session's view are made with it.
+std::unique_ptr<StudioScene> load_studio_scene(const std::filesystem::path& scene_path, const StudioLoad& load,
+                                               Progress& progress);
 
 }  // namespace relight::gui

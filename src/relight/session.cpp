@@ -145,11 +145,12 @@ struct RelightSession::Composition {
   FrameQuality quality = FrameQuality::interactive;
 };
 
-RelightSession::RelightSession(const AnalysedScene& analysed, const Rig& rig, const SessionOptions& options)
+RelightSession::RelightSession(const AnalysedScene& analysed, const Rig& rig, const SessionOptions& options,
+                               std::shared_ptr<const RelightView> view)
     : analysed_(analysed),
       options_(options),
       illumination_(analysed),
-      view_(std::make_unique<RelightView>(analysed, options.width, options.height)),
+      view_(view ? std::move(view) : std::make_shared<const RelightView>(analysed, options.width, options.height)),
       new_environment_(rig.environment),
       environment_(std::make_unique<EnvironmentLayer>()) {
   if (options_.backend == Backend::gl) {

@@ -81,8 +81,12 @@ class RelightSession {
  public:
   // Starts the worker. Holds a reference to `analysed`: it must outlive the
   // session. Falls back to the CPU backend where OpenGL cannot be opened
-  // (backend_note() says why).
-  RelightSession(const AnalysedScene& analysed, const Rig& rig, const SessionOptions& options = {});
+  // (backend_note() says why). `view`: this scene's view made beforehand
+  // (a RelightView of a large photo takes seconds: a window makes it off its
+  // own thread); its size then stands for options' width and height. Null:
+  // made here, of options' size.
+  RelightSession(const AnalysedScene& analysed, const Rig& rig, const SessionOptions& options = {},
+                 std::shared_ptr<const RelightView> view = nullptr);
   ~RelightSession();
   RelightSession(const RelightSession&) = delete;
   RelightSession& operator=(const RelightSession&) = delete;
@@ -140,7 +144,7 @@ class RelightSession {
   const AnalysedScene& analysed_;
   SessionOptions options_;
   NewIllumination illumination_;
-  std::unique_ptr<RelightView> view_;
+  std::shared_ptr<const RelightView> view_;
   std::unique_ptr<DirectLightBackend> fast_;
   bool sees_gloss_ = false;  // the view sees a glossy surface: lights and environment get highlight layers
   std::unique_ptr<MovingHighlights> moving_highlights_;  // a moving light's highlights; none on a matte view
