@@ -7,7 +7,7 @@ gtest_discover_tests(roundtrip_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600 
 add_executable(e2e_test e2e_test.cpp)
 target_link_libraries(e2e_test PRIVATE relight_relight GTest::gtest_main)
 target_compile_definitions(e2e_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-gtest_discover_tests(e2e_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 1200 LABELS reference)
+gtest_discover_tests(e2e_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 1200 LABELS reference COST 100)
 
 add_executable(cli_test cli_test.cpp)
 target_link_libraries(cli_test PRIVATE relight_cli relight_example nlohmann_json::nlohmann_json GTest::gtest_main)
@@ -22,7 +22,7 @@ gtest_discover_tests(probe_lights_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 3
 add_executable(fit_test fit_test.cpp)
 target_link_libraries(fit_test PRIVATE relight_analysis GTest::gtest_main)
 target_compile_definitions(fit_test PRIVATE RELIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-gtest_discover_tests(fit_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900 LABELS reference)
+gtest_discover_tests(fit_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900 LABELS reference COST 80)
 
 # A rig's new environment on a floor under a sky.
 add_executable(new_sky_test new_sky_test.cpp)
