@@ -143,6 +143,13 @@ class StudioTest : public QObject {
     QVERIFY(opened.wait(240000));
   }
   LightingDocument& document() { return *window_->document(); }
+  // The session draws on the view the opened scene brought (made in the task
+  // that opened it, off the window's thread), of this size.
+  void expect_the_scenes_view_at(int width, int height) {
+    QCOMPARE(&document().session().view(), document().studio_scene().session_view.get());
+    QCOMPARE(document().session().view().width(), width);
+    QCOMPARE(document().session().view().height(), height);
+  }
   // The session has drawn every edit so far at final quality; the window shows it.
   void show_converged_frame() {
     document().session().wait_until_converged();
@@ -247,6 +254,7 @@ class StudioTest : public QObject {
     QCOMPARE(document().light_count(), 1);
     QCOMPARE(document().light(0).name, std::string("lamp"));
     QCOMPARE(window_->selected_light(), 0);
+    expect_the_scenes_view_at(320, 240);  // the photo's size: it fits the window's view
   }
 
   // A folder `relight analyze` made is used as it is, with no analysis run;
@@ -317,6 +325,7 @@ class StudioTest : public QObject {
   void a_large_photo_opens_with_a_preview_and_the_full_analysis_keeps_its_edits() {
     StudioOptions options = quick_options();
     options.preview_above_pixels = 1;  // the test scene's photo counts as large
+    options.max_view_width = 160;      // and is wider than the view (320x240)
     window_ = std::make_unique<MainWindow>(options);
     const fs::path other = fs::path(folder_.path().toStdString()) / "large";
     fs::remove_all(other);
@@ -331,6 +340,7 @@ class StudioTest : public QObject {
     QCOMPARE(document().studio_scene().analysed->analysis().options.paths_per_pixel, 4);  // 4 / 8, at least 4
     QCOMPARE(document().studio_scene().analysed->analysis().options.gbuffer_samples, 1);
     QVERIFY(window_->busy());  // the full analysis
+    expect_the_scenes_view_at(160, 120);
     const Light start = document().light(0);
     Light moved = start;
     moved.position += Vec3(0.1f, 0.0f, 0.0f);
@@ -341,6 +351,7 @@ class StudioTest : public QObject {
     QVERIFY(!document().studio_scene().preview);
     QCOMPARE(document().studio_scene().analysed->analysis().options.gbuffer_samples, 9);
     QCOMPARE(&document(), edited);  // the same design, its views and history
+    expect_the_scenes_view_at(160, 120);
     expect_same_light(document().light(0), moved);
     expect_same_light(document().session().rig().lights[0], moved);
     // The edit made on the preview is undone on the full analysis.
