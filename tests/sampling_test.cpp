@@ -66,7 +66,8 @@ TEST(ProgressLine, EstimatesTheTimeLeftFromThePaceSoFar) {
 }
 
 // A job's time left: each stage to come at the pace its kind went at in
-// this run, before that at the pace of what has run.
+// this run; before one of its kind has finished, at the pace of the one
+// running where that is of its kind, else of what has run.
 TEST(JobEstimate, TimesTheStagesToComeAtThePaceTheirKindWent) {
   enum { direct, bounce };
   JobEstimate job({{"direct light", direct, 100.0},
@@ -83,6 +84,9 @@ TEST(JobEstimate, TimesTheStagesToComeAtThePaceTheirKindWent) {
   job.begin("denoising", 4.0);     // not planned: part of the direct light's time
   job.begin("illumination", 6.0);  // the direct light took 5 s: 0.05 s per unit
   EXPECT_NEAR(*job.seconds_left(0.0, 6.0), 0.05 * 50.0, 1e-9);
+  // Half its bar in 5 s, 1 s per unit where the direct light's went 0.05:
+  // it and the bounce light's renders to come at its own pace.
+  EXPECT_NEAR(*job.seconds_left(0.5, 11.0), 5.0 + 40.0, 1e-9);
   job.begin("interreflection 1", 16.0);  // the bounce light: 1 s per unit
   // Its bar half done in 5 s, and at the pace of the illumination: 5 s
   // more; "interreflection 2" and "rendered back" at 1 s per unit.

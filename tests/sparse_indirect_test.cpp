@@ -3,8 +3,10 @@
 // tracing every pixel gives, and a pole thinner than the stride, on which no
 // traced pixel lies, traces its own rather than taking the floor's light.
 // Along paths kept for light after light (KeptPaths), it gives what tracing
-// each light's own paths gives.
+// each light's own paths gives. What a path costs follows the room.
 #include <gtest/gtest.h>
+
+#include <cstdio>
 
 #include "render/render_illumination.h"
 
@@ -186,6 +188,35 @@ TEST(KeptPaths, GiveEachLightsBounceLightAsTracingItsOwnPathsDoes) {
       render_indirect_part(room.gbuffer, Integrator(room.rays, ClosedRoom::bulb_at(Vec3(0, 2, 0)), &room.albedo),
                            options, Progress::silent(), "illumination", &kept),
       std::logic_error);
+}
+
+// What a path costs (mean_path_vertices, for an analysis's time left): in
+// a closed room a path meets a surface after its first and bounces on,
+// the more the brighter the walls; under an open sky it leaves; where every
+// surface's radiance is known it ends at the first it meets.
+struct EveryRadianceKnown : KnownRadiance {
+  std::optional<Vec3> at(const SurfacePoint&) const override { return Vec3::Constant(0.5f); }
+};
+
+TEST(PathLengths, FollowTheRoomAndWhatIsKnown) {
+  const ClosedRoom room;
+  const Lighting bulb = ClosedRoom::bulb_at({0, 2, 1});
+  const UniformAlbedo bright(Vec3::Constant(0.9f));
+  const EveryRadianceKnown known;
+  const double dim_room = mean_path_vertices(room.gbuffer, Integrator(room.rays, bulb, &room.albedo), 2000, 1),
+               bright_room = mean_path_vertices(room.gbuffer, Integrator(room.rays, bulb, &bright), 2000, 1),
+               known_room =
+                   mean_path_vertices(room.gbuffer, Integrator(room.rays, bulb, &room.albedo, {}, &known), 2000, 1);
+  const PoleOnAFloor open;
+  const double open_floor = mean_path_vertices(open.gbuffer, open.integrator, 2000, 1);
+  std::printf(
+      "[ figures  ] mean vertices a path: room of albedo 0.6 %.2f, 0.9 %.2f, its radiance known %.2f; "
+      "a floor under the sky %.2f\n",
+      dim_room, bright_room, known_room, open_floor);
+  EXPECT_GT(dim_room, 1.5);  // the first wall met, then at least every other bounce survives
+  EXPECT_GT(bright_room, 2.0 * dim_room);
+  EXPECT_EQ(known_room, 0.0);
+  EXPECT_LT(open_floor, 0.1);  // the pole, seen from a few of the floor's pixels
 }
 
 }  // namespace

@@ -209,21 +209,43 @@ std::optional<Vec3> photo_exposure_against_the_probes(const Scene& scene, const 
 // of the bounce light. Their work is counted in rays, roughly (the estimate
 // goes by these only until a render of the kind has run, and by the
 // render's own pace once a twentieth of it is done): a direct light sample
-// is one; a path that ends where it meets the photo's radiance is
-// kRaysPerPhotoPath (its first ray, one to a light); a path traced through
-// every bounce kRaysPerFullPath; and each render's filtering, interpolation
-// and division kPixelWork per pixel of the photo.
-constexpr double kRaysPerPhotoPath = 2.0, kRaysPerFullPath = 3.0, kPixelWork = 8.0;
+// is one; a path kRaysPerPath (its first ray, and the environment's shadow
+// ray where it starts) and kRaysPerVertex for each surface it meets after
+// (a light's shadow ray, the environment's, the ray on), as many as
+// PathLengths finds; and each render's filtering, interpolation and
+// division kPixelWork per pixel of the photo.
+constexpr double kRaysPerPath = 2.0, kRaysPerVertex = 3.0, kPixelWork = 8.0;
+
+// The mean surfaces a path meets after its first (mean_path_vertices): one
+// that ends where it meets the photo's radiance, and one traced through
+// every bounce off a mid grey (the albedo found is not known yet). In a
+// closed room the second bounces on several times; under an open sky,
+// hardly at all.
+struct PathLengths {
+  double photo = 0.0, full = 0.0;
+};
+constexpr int kSurveyedPaths = 4096;
+
+PathLengths surveyed_path_lengths(const RayScene& rays, const Lighting& lighting, const GBuffer& gbuffer,
+                                  const IntegratorOptions& integrator_options, const PhotoRadiance* photo_radiance,
+                                  uint64_t seed) {
+  const UniformAlbedo grey(AlbedoImages().mean);
+  const auto survey = [&](const KnownRadiance* known) {
+    return mean_path_vertices(gbuffer, Integrator(rays, lighting, &grey, integrator_options, known), kSurveyedPaths,
+                              seed);
+  };
+  return {photo_radiance ? survey(photo_radiance) : 0.0, survey(nullptr)};
+}
 
 std::vector<JobEstimate::Stage> analysis_stages(const GBuffer& gbuffer, const AnalysisOptions& options,
                                                 const IlluminationOptions& bounce_options, bool photo_radiance,
-                                                int passes) {
+                                                int passes, const PathLengths& lengths) {
   enum Kind { direct_light, photo_paths, full_paths };
   const int w = gbuffer.width(), h = gbuffer.height(), s = indirect_stride(bounce_options, w, h);
   const double pixels = double(w) * h, traced = double((w + s - 1) / s) * double((h + s - 1) / s);
   const Kind bounce_kind = photo_radiance ? photo_paths : full_paths;
   const auto render = [&](const std::string& label, Kind kind, int paths) {
-    const double rays = kind == photo_paths ? kRaysPerPhotoPath : kRaysPerFullPath;
+    const double rays = kRaysPerPath + kRaysPerVertex * (kind == photo_paths ? lengths.photo : lengths.full);
     return JobEstimate::Stage{label, kind, rays * traced * paths + kPixelWork * pixels};
   };
   std::vector<JobEstimate::Stage> stages = {
@@ -366,7 +388,9 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   const int passes = photo_radiance ? kPhotoRadiancePasses : options.max_iterations;
   std::optional<PlannedJob> job;
   if (!radiosity)
-    job.emplace(progress, analysis_stages(gbuffer, options, bounce_options, bool(photo_radiance), passes));
+    job.emplace(progress, analysis_stages(gbuffer, options, bounce_options, bool(photo_radiance), passes,
+                                          surveyed_path_lengths(rays, lighting, gbuffer, integrator_options,
+                                                                photo_radiance.get(), options.seed)));
 
   // photo / illumination; with align_edges, the illumination's edges moved
   // to where the photo shows them (a camera a few pixels off). Moved or not,

@@ -113,9 +113,13 @@ std::optional<double> JobEstimate::seconds_left(double fraction, double t) const
   if (!own_pace && !kind_pace) return std::nullopt;
   double left = std::max(own_pace ? *own_pace * stage.work * (1.0 - f) : 0.0,
                          kind_pace ? *kind_pace * stage.work - in_stage : 0.0);
+  // A stage to come whose kind has not finished a stage goes at the current
+  // stage's own pace where it is of that kind (its first render shows what
+  // the plan's weights got wrong), else at the pace of all that has run.
   for (size_t i = size_t(current_) + 1; i < plan_.size(); ++i) {
-    const auto p = pace(plan_[i].kind);
-    left += (p ? *p : any_pace ? *any_pace : *own_pace) * plan_[i].work;
+    auto p = pace(plan_[i].kind);
+    if (!p) p = plan_[i].kind == stage.kind && own_pace ? own_pace : any_pace ? any_pace : own_pace;
+    left += *p * plan_[i].work;
   }
   return left;
 }

@@ -27,7 +27,8 @@ std::string progress_line(const std::string& label, double fraction, double elap
 // and an amount of work (the paths it traces); stages of one kind take time
 // in proportion to their work, so a stage to come is timed at the pace its
 // kind went at in this run, or, before any stage of its kind has finished,
-// at the pace of the stages that have. A stage's time runs from its begin
+// at the running stage's own pace where it is of that kind, else at the
+// pace of the stages that have finished. A stage's time runs from its begin
 // to the next planned stage's, so the work that follows its bar (filtering,
 // dividing) counts with it. Times are seconds on any one clock.
 class JobEstimate {

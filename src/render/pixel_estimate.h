@@ -13,7 +13,8 @@ namespace relight {
 
 // Each part draws its own random numbers at a pixel, so that the noise of
 // one does not depend on how many the other drew.
-constexpr uint64_t kPhotoStream = 0, kDirectStream = 1, kIndirectStream = 2, kKeptPathStream = 3, kSpecularStream = 4;
+constexpr uint64_t kPhotoStream = 0, kDirectStream = 1, kIndirectStream = 2, kKeptPathStream = 3, kSpecularStream = 4,
+                   kSurveyStream = 5;
 
 struct PixelEstimate {
   Vec3 mean = Vec3::Zero();

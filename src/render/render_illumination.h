@@ -56,6 +56,15 @@ int direct_samples_per_pixel(int paths_per_pixel, const GBuffer& gbuffer);
 Image synthesize_photo(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
                        const SurfaceAlbedo& albedo, int paths_per_pixel, uint64_t seed, Progress& progress);
 
+// The mean number of surfaces a path of `integrator` meets after the one it
+// starts from (the vertices bounce_vertices keeps), over one path from each
+// of about `paths` pixels spread evenly over the view: a render's cost per
+// path. It follows what the renderer knows (a path ends where it meets known
+// radiance) and the room (in a closed one, with bright walls, a path
+// bounces on many times; under an open sky it leaves). Deterministic for a
+// seed; 0 where the view holds no geometry.
+double mean_path_vertices(const GBuffer& gbuffer, const Integrator& integrator, int paths, uint64_t seed);
+
 // The mean environment radiance over each pixel's samples that see the
 // background (0 where none does): IlluminationImages::background.
 Image render_background(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator);
