@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Runs libFuzzer targets: fuzz/run.sh TARGET|all SECONDS
-# TARGET: scene_json, rig_json, probe, mesh or image. Builds build-fuzz/ with
-# the `fuzz` preset when needed, runs each target for SECONDS from its seed
-# corpus fuzz/corpus/TARGET (new inputs go to build-fuzz/corpus/TARGET),
+# TARGET: scene_json, rig_json, probe, mesh or image. Builds the targets in
+# build-asan/ (the `asan` preset) when needed, runs each for SECONDS from its
+# seed corpus fuzz/corpus/TARGET (new inputs go to build-asan/fuzzing/corpus/TARGET),
 # JOBS targets at a time (default: the number of cores). A crash leaves its
-# input in build-fuzz/artifacts/TARGET/ and makes the script fail: copy it to
+# input in build-asan/fuzzing/artifacts/TARGET/ and makes the script fail: copy it to
 # fuzz/regressions/TARGET/, where ctest replays it, and fix the bug.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,15 +20,16 @@ done
 seconds="$2"
 jobs="${JOBS:-$(nproc)}"
 
-[ -f build-fuzz/build.ninja ] || cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz -j "$jobs"
+cmake --preset asan >/dev/null  # (again: a build-asan/ configured before it built the fuzz targets)
+cmake --build --preset asan --target fuzz_targets -j "$jobs"
+out=build-asan/fuzzing
 
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0"
 
 run_one() {
-  local t="$1" work="build-fuzz/corpus/$1" artifacts="build-fuzz/artifacts/$1/" log="build-fuzz/logs/$1.log"
+  local t="$1" work="$out/corpus/$1" artifacts="$out/artifacts/$1/" log="$out/logs/$1.log"
   mkdir -p "$work" "$artifacts" "$(dirname "$log")"
   local dict=()
   [[ "$t" == *_json ]] && dict=(-dict=fuzz/json.dict)
@@ -40,13 +41,13 @@ run_one() {
   local memory=(-rss_limit_mb=3072)
   [ "$t" = mesh ] && memory+=(-malloc_limit_mb=512)
   local status=0
-  "build-fuzz/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=30 "${memory[@]}" -print_final_stats=1 \
+  "build-asan/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=30 "${memory[@]}" -print_final_stats=1 \
     -artifact_prefix="$artifacts" "${dict[@]}" "$work" "fuzz/corpus/$t" >"$log" 2>&1 || status=$?
   local runs rate
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
   printf 'fuzz %-10s %3ss: %s runs, %s exec/s, corpus %s files, status %s\n' "$t" "$seconds" "${runs:-?}" \
-    "${rate:-?}" "$(ls "$work" | wc -l)" "$status" >>build-fuzz/logs/summary
+    "${rate:-?}" "$(ls "$work" | wc -l)" "$status" >>"$out/logs/summary"
   if [ "$status" -ne 0 ]; then
     echo "fuzz $t: FAILED (status $status); the input is in $artifacts, the log in $log:" >&2
     grep -E 'ERROR|SUMMARY|fuzz:|#[0-9]+ 0x' "$log" | head -20 >&2 || true
@@ -54,8 +55,8 @@ run_one() {
   return "$status"
 }
 
-mkdir -p build-fuzz/logs
-: >build-fuzz/logs/summary
+mkdir -p "$out/logs"
+: >"$out/logs/summary"
 failed=0
 pids=()
 for t in "${targets[@]}"; do
@@ -64,5 +65,5 @@ for t in "${targets[@]}"; do
   pids+=($!)
 done
 for pid in "${pids[@]}"; do wait "$pid" || failed=1; done
-cat build-fuzz/logs/summary
+cat "$out/logs/summary"
 exit "$failed"
