@@ -15,7 +15,7 @@ packages=(
   blender                            # blender_test: the Blender exporter (about a minute to install)
   python3-openimageio python3-numpy  # bench/*.py scripts that read and write images (upsample_scene.py)
   slurmctld slurmd slurm-client munge  # farm_slurm_test: relight farm through a Slurm started on this machine
-  clang-14 libclang-rt-14-dev llvm-14  # asan and fuzz presets: clang, libFuzzer, llvm-symbolizer
+  clang-14 libclang-rt-14-dev llvm-14  # asan preset and its fuzz targets: clang, libFuzzer, llvm-symbolizer
   lld                                # links about three times faster than ld (CMakeLists.txt)
 )
 
