@@ -301,16 +301,18 @@ Image render_indirect_part(const GBuffer& g, const Integrator& integrator, const
 double mean_path_vertices(const GBuffer& g, const Integrator& integrator, int paths, uint64_t seed) {
   const int step = std::max(1, int(std::sqrt(double(g.width()) * g.height() / std::max(paths, 1))));
   std::vector<Integrator::PathVertex> vertices;
-  size_t traced = 0;
+  size_t traced = 0, met = 0;
   for (int y = step / 2; y < g.height(); y += step)
     for (int x = step / 2; x < g.width(); x += step) {
       const GBufferSample s = g.central(x, y);
       if (!s.hit) continue;
       Rng rng(seed, size_t(y) * g.width() + x, kSurveyStream);
+      vertices.clear();
       integrator.bounce_vertices(s.surface, rng, nullptr, vertices);
+      met += vertices.size();
       ++traced;
     }
-  return traced ? double(vertices.size()) / double(traced) : 0.0;
+  return traced ? double(met) / double(traced) : 0.0;
 }
 
 Image render_background(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator) {
