@@ -144,11 +144,17 @@ class StudioTest : public QObject {
   }
   LightingDocument& document() { return *window_->document(); }
   // The session draws on the view the opened scene brought (made in the task
-  // that opened it, off the window's thread), of this size.
+  // that opened it, off the window's thread), of this size; the photo beside
+  // it ("before") is shown at that size too, and the frame's exposure is
+  // the one chosen for it there.
   void expect_the_scenes_view_at(int width, int height) {
     QCOMPARE(&document().session().view(), document().studio_scene().session_view.get());
     QCOMPARE(document().session().view().width(), width);
     QCOMPARE(document().session().view().height(), height);
+    const Image& shown = document().studio_scene().shown_photo();
+    QCOMPARE(shown.width, width);
+    QCOMPARE(shown.height, height);
+    QCOMPARE(window_->photo_view().exposure(), display_exposure_for(shown));
   }
   // The session has drawn every edit so far at final quality; the window shows it.
   void show_converged_frame() {

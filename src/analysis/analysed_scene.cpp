@@ -13,6 +13,9 @@ void AnalysedScene::set_analysis(Analysis analysis) {
   // The analysis's units: the photo shows through where no geometry covers it.
   if (analysis_.photo_exposure != Vec3::Ones()) apply_exposure(scene_.photo, analysis_.photo_exposure.cwiseInverse());
   environment_ = strategy_environment(scene_, *rays_, analysis_.options.strategy);
+  const AlbedoImages& albedo = analysis_.albedo;
+  bounce_albedo_ =
+      std::make_unique<PhotoAlbedo>(scene_.camera, *gbuffer_, albedo.albedo, albedo.mean, albedo.unseen_triangles);
 }
 
 std::unique_ptr<AnalysedScene> AnalysedScene::from_folder(Scene&& scene, const std::filesystem::path& folder) {

@@ -386,7 +386,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   connect(document_.get(), &LightingDocument::environmentScaleChanged, photo_panel_, &PhotoPanel::show_ambient);
   connect(document_.get(), &LightingDocument::soloChanged, this, &MainWindow::update_actions);
   photo_panel_->show_ambient(rig.environment_scale);
-  photo_panel_->set_exposure(display_exposure_for(scene_->analysed->scene().photo));
+  photo_panel_->set_exposure(scene_->display_exposure);
   show_analysis();
   select_light(document_->light_count() > 0 ? 0 : -1);
   remember(kRecentScenes, scene_path);
@@ -398,8 +398,8 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
 }
 
 void MainWindow::show_analysis() {
-  // The scene's own photo, not a copy (288 MB at 24 Mpixel): the pointer keeps the scene alive.
-  photo_view().set_photo(std::shared_ptr<const Image>(scene_, &scene_->analysed->scene().photo));
+  // Not a copy (the scene's own photo is 288 MB at 24 Mpixel): the pointer keeps the scene alive.
+  photo_view().set_photo(std::shared_ptr<const Image>(scene_, &scene_->shown_photo()));
   photo_view().set_relit(nullptr);
   photo_view().set_geometry_edges(scene_->geometry_edges);
   QString opened =

@@ -9,6 +9,8 @@
 #include "analysis/strategy.h"
 #include "core/error.h"
 #include "gui/geometry_overlay.h"
+#include "gui/tone_map.h"
+#include "io/image_io.h"
 #include "io/scene_io.h"
 
 namespace relight::gui {
@@ -74,6 +76,8 @@ std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const
     height = std::max(1, int(std::lround(double(photo.height) * width / photo.width)));
   }
   s->session_view = std::make_shared<const RelightView>(*s->analysed, width, height);
+  if (width > 0) s->reduced_photo = resized(photo, width, height);
+  s->display_exposure = display_exposure_for(s->shown_photo());
   return s;
 }
 

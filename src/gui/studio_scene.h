@@ -30,6 +30,13 @@ struct StudioScene {
   // layers resampled: seconds at 8 Mpixel). Declared after `analysed`, which
   // it reads.
   std::shared_ptr<const RelightView> session_view;
+  // The photo as the window shows it ("before" the re-lit image): at the
+  // session view's size, and the exposure that shows it well
+  // (display_exposure_for). Made off the window's thread, which took 0.5 s
+  // at 8 Mpixel to encode and measure the full-size photo.
+  const Image& shown_photo() const { return reduced_photo.empty() ? analysed->scene().photo : reduced_photo; }
+  Image reduced_photo;  // empty where the view is the photo's size
+  float display_exposure = 0.0f;
 };
 
 // How load_studio_scene reads or makes a scene's analysis and view.

@@ -32,9 +32,7 @@ Image compose_relit(const RelitLayers& layers, const Image& illumination, float 
 }
 
 NewIllumination::NewIllumination(const AnalysedScene& analysed)
-    : analysed_(analysed),
-      bounce_albedo_(analysed.scene().camera, analysed.gbuffer(), analysed.analysis().albedo.albedo,
-                     analysed.analysis().albedo.mean, analysed.analysis().albedo.unseen_triangles) {}
+    : analysed_(analysed), bounce_albedo_(analysed.bounce_albedo()) {}
 
 Environment rig_environment(const RigEnvironment& environment) {
   return environment.image ? Environment::from_probes({*environment.image}) : Environment::constant(environment.color);

@@ -106,7 +106,7 @@ class NewIllumination {
   auto render_highlights(const Lighting& lighting, const RenderOptions& options, const Render& render) const;
 
   const AnalysedScene& analysed_;
-  PhotoAlbedo bounce_albedo_;
+  const PhotoAlbedo& bounce_albedo_;
 };
 
 // Adds the highlights (NewIllumination::highlights; none where empty) to a
