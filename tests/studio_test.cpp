@@ -18,9 +18,11 @@
 #include <QTimer>
 #include <QToolButton>
 #include <QtTest/QtTest>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -307,6 +309,27 @@ class StudioTest : public QObject {
       QCOMPARE(qRed(shown.pixel(x, 0)), int(std::lround(255.0f * srgb_encode(v))));
     }
     QCOMPARE(colour_hex(Vec3(1.0f, srgb_decode(128.0f / 255.0f), 0.0f)), QStringLiteral("#ff8000"));
+    // Every decade from 1e-6 to 2, finely: the code rounded, but for values
+    // within a hair of a code's boundary (where float rounding picks a side).
+    Image sweep(1 << 20, 1);
+    for (int x = 0; x < sweep.width; ++x)
+      sweep.at(x, 0) = Vec3::Constant(1e-6f * std::pow(2e6f, float(x) / float(sweep.width - 1)));
+    const QImage swept = to_qimage(sweep, 0.0f);
+    int off = 0;
+    for (int x = 0; x < sweep.width; ++x) {
+      const float encoded = 255.0f * srgb_encode(std::min(sweep.at(x, 0).x(), 1.0f));
+      const bool on_boundary = std::abs(encoded - std::floor(encoded) - 0.5f) < 1e-3f;
+      off += !on_boundary && qRed(swept.pixel(x, 0)) != int(std::lround(encoded));
+    }
+    QCOMPARE(off, 0);
+    const float odd[] = {std::numeric_limits<float>::quiet_NaN(), -1.0f, -0.0f, std::numeric_limits<float>::infinity()};
+    Image odd_values(4, 1);
+    for (int x = 0; x < 4; ++x) odd_values.at(x, 0) = Vec3::Constant(odd[x]);
+    const QImage odd_shown = to_qimage(odd_values, 0.0f);
+    QCOMPARE(qRed(odd_shown.pixel(0, 0)), 0);
+    QCOMPARE(qRed(odd_shown.pixel(1, 0)), 0);
+    QCOMPARE(qRed(odd_shown.pixel(2, 0)), 0);
+    QCOMPARE(qRed(odd_shown.pixel(3, 0)), 255);
   }
 
   void cancelling_the_analysis_keeps_the_open_scene() {

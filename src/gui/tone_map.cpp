@@ -1,45 +1,71 @@
 // oneTBB before any Qt header: Qt's `emit` macro breaks TBB's headers.
+// clang-format off
 #include <tbb/parallel_for.h>
 
 #include "gui/tone_map.h"
+// clang-format on
 
 #include <QRegularExpression>
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace relight::gui {
 
 namespace {
 
-// The linear values where the 8-bit sRGB code steps up: code k+1 starts at
-// srgb_decode((k + 0.5) / 255). Looking a value up among them gives
-// round(255 srgb_encode(x)) without a pow per channel (a frame is millions).
-const std::array<float, 255>& code_boundaries() {
-  static const std::array<float, 255> boundaries = [] {
-    std::array<float, 255> b;
-    for (int k = 0; k < 255; ++k) b[size_t(k)] = srgb_decode((float(k) + 0.5f) / 255.0f);
-    return b;
-  }();
-  return boundaries;
+// round(255 srgb_encode(x)) for x clamped to [0, 1] (NaN: 0), without a pow
+// or a search per channel: a frame is millions of them.
+class SrgbBytes {
+ public:
+  SrgbBytes() {
+    // Code k+1 starts at srgb_decode((k + 0.5) / 255).
+    for (int k = 0; k < 255; ++k) boundaries_[size_t(k)] = srgb_decode((float(k) + 0.5f) / 255.0f);
+    for (uint32_t r = 0; r < kRanges; ++r) {
+      const float start = std::bit_cast<float>(r << kRangeShift);
+      range_codes_[r] = uint8_t(std::upper_bound(boundaries_.begin(), boundaries_.end(), start) - boundaries_.begin());
+    }
+  }
+
+  int operator()(float linear) const {
+    if (!(linear > 0.0f)) return 0;
+    if (linear >= 1.0f) return 255;
+    const int code = range_codes_[std::bit_cast<uint32_t>(linear) >> kRangeShift];
+    return code < 255 && linear >= boundaries_[size_t(code)] ? code + 1 : code;
+  }
+
+ private:
+  // A value in [0, 1) is looked up by its float's top bits: its exponent and
+  // 8 bits of mantissa, a range of values 0.4 % wide. Neighbouring code
+  // boundaries are at least 0.9 % apart, so at most one falls in a range:
+  // a value's code is its range's first, or the next past that boundary.
+  static constexpr int kRangeShift = 15;
+  static constexpr uint32_t kRanges = 0x3F800000u >> kRangeShift;  // up to the bits of 1.0f
+  std::array<float, 255> boundaries_;
+  std::array<uint8_t, kRanges> range_codes_;
+};
+
+const SrgbBytes& srgb_bytes() {
+  static const SrgbBytes bytes;
+  return bytes;
 }
 
-int srgb_byte(float linear) {
-  const auto& b = code_boundaries();
-  return int(std::upper_bound(b.begin(), b.end(), linear) - b.begin());
-}
+int srgb_byte(float linear) { return srgb_bytes()(linear); }
 
 }  // namespace
 
 QImage to_qimage(const Image& linear, float exposure_stops) {
   const float scale = std::exp2(exposure_stops);
+  const SrgbBytes& srgb = srgb_bytes();
   QImage image(linear.width, linear.height, QImage::Format_RGB888);
   tbb::parallel_for(0, linear.height, [&](int y) {
     uchar* row = image.scanLine(y);
     for (int x = 0; x < linear.width; ++x) {
       const Vec3 v = linear.at(x, y) * scale;
-      for (int c = 0; c < 3; ++c) row[3 * x + c] = uchar(srgb_byte(v[c]));
+      for (int c = 0; c < 3; ++c) row[3 * x + c] = uchar(srgb(v[c]));
     }
   });
   return image;
