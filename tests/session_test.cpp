@@ -8,10 +8,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <mutex>
 #include <thread>
 
 #include "analysed_room.h"
@@ -188,6 +191,34 @@ TEST(Session, MovingOneLightRendersOnlyThatLight) {
   const Frame frame = session.wait_for_edit(session.set_light(1, moved(rig.lights[1], Vec3(0.3f, 0.0f, 0.0f))));
   EXPECT_EQ(session.stats().interactive_renders, stats.interactive_renders + 1);
   EXPECT_TRUE(frame.image);
+}
+
+// A window is told of each new frame as it is published, and may ask the
+// session for it from the listener (it is called outside the session's lock).
+TEST(Session, TellsItsListenerOfEveryNewFrame) {
+  const AnalysedScene& r = room();
+  Rig rig = example::evening_rig();
+  std::mutex heard_mutex;
+  std::condition_variable heard_changed;
+  uint64_t heard_edit = 0;
+  int calls = 0;
+  RelightSession session(r, rig, quick_options());
+  session.set_frame_listener([&] {
+    const uint64_t edit = session.frame().edit;
+    std::lock_guard lock(heard_mutex);
+    heard_edit = std::max(heard_edit, edit);
+    ++calls;
+    heard_changed.notify_all();
+  });
+  const uint64_t edit = session.set_light(1, moved(rig.lights[1], Vec3(0.3f, 0.0f, 0.0f)));
+  std::unique_lock lock(heard_mutex);
+  EXPECT_TRUE(heard_changed.wait_for(lock, std::chrono::minutes(2), [&] { return heard_edit >= edit; }));
+  const int calls_then = calls;
+  lock.unlock();
+  session.wait_until_converged();
+  lock.lock();
+  EXPECT_TRUE(heard_changed.wait_for(lock, std::chrono::minutes(2),
+                                     [&] { return calls > calls_then && heard_edit == session.last_edit(); }));
 }
 
 TEST(Session, AddsAndRemovesLights) {

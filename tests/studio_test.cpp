@@ -988,6 +988,20 @@ class StudioTest : public QObject {
     QCOMPARE(differing_pixels(window_->photo_view().displayed_image(), before), 0);
   }
 
+  // The window shows each frame the session makes as it comes, nobody
+  // asking for it: the moved lamp's first frame, then its converged one.
+  void a_new_frame_is_shown_as_soon_as_it_is_made() {
+    show_converged_frame();
+    QTest::keyClick(&window_->geometry_view(), Qt::Key_Left, Qt::ShiftModifier);
+    const Frame first = document().session().wait_for_edit(document().session().last_edit());
+    QTRY_VERIFY_WITH_TIMEOUT(window_->photo_view().relit() == document().session().frame().image &&
+                                 document().session().frame().edit >= first.edit,
+                             60000);
+    const Frame converged = document().session().wait_until_converged();
+    QTRY_COMPARE_WITH_TIMEOUT(window_->photo_view().relit(), converged.image, 60000);
+    window_->undo_stack().undo();
+  }
+
   void the_split_shows_the_photo_left_and_the_relit_image_right() {
     show_converged_frame();
     PhotoView& view = window_->photo_view();

@@ -20,7 +20,9 @@ LightingDocument::LightingDocument(std::shared_ptr<const StudioScene> scene, con
       scene_(std::move(scene)),
       rig_(rig),
       session_(std::make_unique<RelightSession>(*scene_->analysed, rig_, options, scene_->session_view)),
-      sky_{rig.environment} {}
+      sky_{rig.environment} {
+  listen_to_frames();
+}
 
 LightingDocument::~LightingDocument() = default;
 
@@ -98,6 +100,24 @@ void LightingDocument::replace_scene(std::shared_ptr<const StudioScene> scene, c
   // The new session before the old scene goes: the old session reads it.
   session_ = std::make_unique<RelightSession>(*scene->analysed, shown_rig(), options, scene->session_view);
   scene_ = std::move(scene);
+  listen_to_frames();
+}
+
+void LightingDocument::listen_to_frames() {
+  session_->set_frame_listener([this] { post_frame_ready(); });
+  post_frame_ready();  // a frame the session made before it had the listener
+}
+
+void LightingDocument::post_frame_ready() {
+  if (frame_posted_.exchange(true)) return;
+  // Queued to this object's thread; dropped if the document is gone by then.
+  QMetaObject::invokeMethod(
+      this,
+      [this] {
+        frame_posted_ = false;
+        emit frameReady();
+      },
+      Qt::QueuedConnection);
 }
 
 }  // namespace relight::gui

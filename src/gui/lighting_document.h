@@ -8,6 +8,7 @@
 #pragma once
 
 #include <QObject>
+#include <atomic>
 #include <memory>
 
 #include "gui/studio_scene.h"
@@ -80,13 +81,22 @@ class LightingDocument : public QObject {
   void skyChanged();
   void rigReset();
   void soloChanged(int index);
+  // The session has a new frame (RelightSession::frame): emitted on the
+  // document's thread, once for any number made since the last.
+  void frameReady();
 
  private:
+  // Forwards the session's new frames as frameReady (post_frame_ready, from
+  // the session's worker).
+  void listen_to_frames();
+  void post_frame_ready();
+
   std::shared_ptr<const StudioScene> scene_;
   Rig rig_;
   std::unique_ptr<RelightSession> session_;
   int solo_ = -1;
   SkyEdit sky_;
+  std::atomic<bool> frame_posted_{false};  // a frameReady is on its way
 };
 
 }  // namespace relight::gui

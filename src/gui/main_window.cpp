@@ -79,8 +79,6 @@ MainWindow::MainWindow(StudioOptions options, QWidget* parent)
   statusBar()->addPermanentWidget(task_status_);
 
   connect(&undo_, &QUndoStack::cleanChanged, this, [this] { update_title(); });
-  connect(&frame_timer_, &QTimer::timeout, this, [this] { refresh_frame(); });
-  frame_timer_.start(33);
   update_actions();
   update_title();
   resize(1500, 900);
@@ -91,7 +89,6 @@ PhotoView& MainWindow::photo_view() const { return photo_panel_->photo_view(); }
 LightListModel& MainWindow::light_model() const { return lights_->model(); }
 
 MainWindow::~MainWindow() {
-  frame_timer_.stop();
   task_.cancel();
   task_.wait();
   undo_.clear();
@@ -385,6 +382,7 @@ void MainWindow::install_scene(std::shared_ptr<const StudioScene> scene, const Q
   });
   connect(document_.get(), &LightingDocument::environmentScaleChanged, photo_panel_, &PhotoPanel::show_ambient);
   connect(document_.get(), &LightingDocument::soloChanged, this, &MainWindow::update_actions);
+  connect(document_.get(), &LightingDocument::frameReady, this, [this] { refresh_frame(); });
   photo_panel_->show_ambient(rig.environment_scale);
   photo_panel_->set_exposure(scene_->display_exposure);
   show_analysis();

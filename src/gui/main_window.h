@@ -8,7 +8,6 @@
 #pragma once
 
 #include <QMainWindow>
-#include <QTimer>
 #include <QUndoStack>
 #include <functional>
 #include <memory>
@@ -182,7 +181,6 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<LightingDocument> document_;
   QUndoStack undo_;
   BackgroundTask task_;
-  QTimer frame_timer_;
   int selected_ = -1;
   QString scene_path_, rig_path_, last_error_;
 

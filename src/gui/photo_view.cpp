@@ -158,6 +158,7 @@ std::optional<Vec3> PhotoView::surface_at(const QPointF& widget_point) const {
 
 void PhotoView::compose() {
   displayed_ = relit_image_;
+  shown_ = QImage();
   if (!displayed_.isNull() && !photo_image_.isNull() && split_ > 0.0) {
     const QImage before = photo_image_.size() == displayed_.size()
                               ? photo_image_
@@ -198,8 +199,11 @@ void PhotoView::paintEvent(QPaintEvent*) {
     return;
   }
   const QRectF r = picture_rect();
-  painter.setRenderHint(QPainter::SmoothPixmapTransform);
-  painter.drawImage(r, displayed_);
+  // Scaled once per frame and size, not on every paint: the lights' shapes
+  // repaint the view at each step of a drag, beside the session's render.
+  if (shown_.size() != r.size().toSize())
+    shown_ = displayed_.scaled(r.size().toSize(), Qt::IgnoreAspectRatio, Qt::SmoothTransformation);
+  painter.drawImage(r.topLeft().toPoint(), shown_);
   if (split_ > 0.0) {
     const double x = r.left() + split_ * r.width();
     painter.setPen(QPen(QColor(255, 255, 255, 220), 1.5));

@@ -91,6 +91,7 @@ class PhotoView : public QWidget {
 
   std::shared_ptr<const Image> photo_, relit_;
   QImage photo_image_, relit_image_, displayed_;
+  QImage shown_;  // displayed_ scaled to the picture's place in the widget (made when painted)
   float exposure_ = 0.0f;
   double split_ = 0.0;
   LightingDocument* document_ = nullptr;

@@ -60,12 +60,14 @@ int srgb_byte(float linear) { return srgb_bytes()(linear); }
 QImage to_qimage(const Image& linear, float exposure_stops) {
   const float scale = std::exp2(exposure_stops);
   const SrgbBytes& srgb = srgb_bytes();
-  QImage image(linear.width, linear.height, QImage::Format_RGB888);
+  // 32 bits a pixel, as the painter draws it: an RGB888 image was
+  // converted each time the picture was painted.
+  QImage image(linear.width, linear.height, QImage::Format_RGB32);
   tbb::parallel_for(0, linear.height, [&](int y) {
-    uchar* row = image.scanLine(y);
+    auto* row = reinterpret_cast<QRgb*>(image.scanLine(y));
     for (int x = 0; x < linear.width; ++x) {
       const Vec3 v = linear.at(x, y) * scale;
-      for (int c = 0; c < 3; ++c) row[3 * x + c] = uchar(srgb(v[c]));
+      row[x] = qRgb(srgb(v.x()), srgb(v.y()), srgb(v.z()));
     }
   });
   return image;

@@ -355,6 +355,11 @@ Frame RelightSession::wait_until_converged() {
   return frame_;
 }
 
+void RelightSession::set_frame_listener(std::function<void()> listener) {
+  std::lock_guard lock(mutex_);
+  frame_listener_ = std::move(listener);
+}
+
 // ---- the worker ----
 
 std::shared_ptr<RelightSession::LightCache> RelightSession::find_light_locked(uint64_t id) const {
@@ -710,6 +715,11 @@ void RelightSession::compose_and_publish(std::unique_lock<std::mutex>& lock) {
   frame_.edit = c.edit;
   frame_.quality = c.quality;
   frame_changed_.notify_all();
+  if (const std::function<void()> listener = frame_listener_) {
+    lock.unlock();
+    listener();
+    lock.lock();
+  }
 }
 
 void RelightSession::run_worker() {

@@ -25,6 +25,7 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -121,6 +122,10 @@ class RelightSession {
   Frame wait_for_edit(uint64_t edit);
   // Blocks until the frame of the last edit has converged.
   Frame wait_until_converged();
+  // Called on the worker's thread after each new frame is published (frame()
+  // returns it), outside the session's lock: a window shows the frame as
+  // soon as it is made instead of polling for it. It must return quickly.
+  void set_frame_listener(std::function<void()> listener);
 
  private:
   struct LightCache;
@@ -153,6 +158,7 @@ class RelightSession {
 
   mutable std::mutex mutex_;
   std::condition_variable work_changed_, frame_changed_;
+  std::function<void()> frame_listener_;
   float environment_scale_ = 1.0f;
   std::vector<std::shared_ptr<LightCache>> lights_;
   uint64_t next_light_id_ = 1;
