@@ -93,10 +93,12 @@ class LightingDocument : public QObject {
 
   std::shared_ptr<const StudioScene> scene_;
   Rig rig_;
+  // A frameReady is on its way. Declared before the session so that it is
+  // destroyed after it: the session's worker may post until it is gone.
+  std::atomic<bool> frame_posted_{false};
   std::unique_ptr<RelightSession> session_;
   int solo_ = -1;
   SkyEdit sky_;
-  std::atomic<bool> frame_posted_{false};  // a frameReady is on its way
 };
 
 }  // namespace relight::gui
