@@ -147,8 +147,8 @@ class StudioTest : public QObject {
   LightingDocument& document() { return *window_->document(); }
   // The session draws on the view the opened scene brought (made in the task
   // that opened it, off the window's thread), of this size; the photo beside
-  // it ("before") is shown at that size too, and the frame's exposure is
-  // the one chosen for it there.
+  // it ("before") and the geometry's edges over it are at that size too, and
+  // the frame's exposure is the one chosen for the photo there.
   void expect_the_scenes_view_at(int width, int height) {
     QCOMPARE(&document().session().view(), document().studio_scene().session_view.get());
     QCOMPARE(document().session().view().width(), width);
@@ -156,6 +156,7 @@ class StudioTest : public QObject {
     const Image& shown = document().studio_scene().shown_photo();
     QCOMPARE(shown.width, width);
     QCOMPARE(shown.height, height);
+    QCOMPARE(document().studio_scene().geometry_edges.size(), QSize(width, height));
     QCOMPARE(window_->photo_view().exposure(), display_exposure_for(shown));
   }
   // The session has drawn every edit so far at final quality; the window shows it.
@@ -1428,7 +1429,7 @@ class StudioTest : public QObject {
     };
     // Made when the scene opened, as they would be now.
     const QImage& edges = document().studio_scene().geometry_edges;
-    QCOMPARE(edges, geometry_edges_image(document().studio_scene().analysed->gbuffer()));
+    QCOMPARE(edges, geometry_edges_image(document().studio_scene().session_view->gbuffer()));
     int marked = 0;
     for (int y = 0; y < edges.height(); ++y)
       for (int x = 0; x < edges.width(); ++x) marked += qAlpha(edges.pixel(x, y)) != 0;

@@ -67,7 +67,6 @@ std::unique_ptr<StudioScene> analysed_studio_scene(const fs::path& scene_path, c
 std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const StudioLoad& load, Progress& progress) {
   std::unique_ptr<StudioScene> s =
       analysed_studio_scene(scene_path, load.analysis, progress, load.analysis_folder, load.preview_above_pixels);
-  s->geometry_edges = geometry_edges_image(s->analysed->gbuffer());
   // A photo wider than max_view_width is shown (and edited) that wide; 0, 0: at its own size.
   const Image& photo = s->analysed->scene().photo;
   int width = 0, height = 0;
@@ -76,6 +75,7 @@ std::unique_ptr<StudioScene> load_studio_scene(const fs::path& scene_path, const
     height = std::max(1, int(std::lround(double(photo.height) * width / photo.width)));
   }
   s->session_view = std::make_shared<const RelightView>(*s->analysed, width, height);
+  s->geometry_edges = geometry_edges_image(s->session_view->gbuffer());
   if (width > 0) s->reduced_photo = resized(photo, width, height);
   s->display_exposure = display_exposure_for(s->shown_photo());
   return s;

@@ -20,16 +20,17 @@ struct StudioScene {
   bool from_cache = false;                // the analysis was read from a folder, not made now
   bool preview = false;                   // a quick analysis (preview_options), to be replaced by the full one
   std::filesystem::path analysis_folder;  // where it was read from or written to
-  // The geometry's edges through the camera, drawn over the photo
-  // (geometry_overlay.h): made with the analysis, off the window's thread
-  // (0.36 s at 8 Mpixel).
-  QImage geometry_edges;
   // The relighting session's view (RelightSession): the photo's size, or
   // smaller for a photo wider than StudioLoad::max_view_width. Made with the
   // analysis, off the window's thread (its own G-buffer and the analysis's
   // layers resampled: seconds at 8 Mpixel). Declared after `analysed`, which
   // it reads.
   std::shared_ptr<const RelightView> session_view;
+  // The geometry's edges through the camera, drawn over the photo
+  // (geometry_overlay.h): at the session view's size, as the photo is shown
+  // (a photo-sized image of a 24-Mpixel photo was 96 MB, scaled down at
+  // every paint); made with the view, off the window's thread.
+  QImage geometry_edges;
   // The photo as the window shows it ("before" the re-lit image): at the
   // session view's size, and the exposure that shows it well
   // (display_exposure_for). Made off the window's thread, which took 0.5 s
