@@ -245,30 +245,53 @@ class StallWatch {
   qint64 longest_ = 0;
 };
 
+// relight studio as the benches run it: the CPU backend, nothing
+// remembered, a window of `size` shown.
+std::unique_ptr<MainWindow> shown_window(QSize size) {
+  StudioOptions options;
+  options.session.backend = Backend::cpu;
+  options.remember_recent = false;
+  auto window = std::make_unique<MainWindow>(options);
+  window->resize(size);
+  window->show();
+  return window;
+}
+
+// Opens the scene in `folder` in `window` (with its analysis folder
+// SCENE/analysis where `analysed`), the event loop turning until it is
+// shown and, where a preview came first, until the full analysis took its
+// place; then 500 ms more (its first frames). Returns the seconds until it
+// was first shown.
+double open_in(MainWindow& window, const fs::path& folder, bool analysed) {
+  QElapsedTimer clock;
+  double shown_s = 0.0;
+  QEventLoop loop;
+  QObject::connect(&window, &MainWindow::sceneOpened, &loop, [&] {
+    shown_s = double(clock.elapsed()) / 1e3;
+    if (!window.document()->studio_scene().preview) loop.quit();
+  });
+  QObject::connect(&window, &MainWindow::fullAnalysisDone, &loop, &QEventLoop::quit);
+  QObject::connect(&window, &MainWindow::openFailed, &loop, &QEventLoop::quit);
+  clock.start();
+  window.open_scene(QString::fromStdString((folder / "scene.json").string()), {},
+                    analysed ? QString::fromStdString((folder / "analysis").string()) : QString());
+  loop.exec();
+  QTimer::singleShot(500, &loop, &QEventLoop::quit);
+  loop.exec();
+  return shown_s;
+}
+
 // relight studio opening an analysed photo of w x h: the time until the
 // scene is shown, and the longest the window's event loop went without
 // turning meanwhile (a timer asks every 5 ms): how long the window froze.
 void BM_OpenLargePhoto(benchmark::State& state) {
   const fs::path folder = large_room(int(state.range(0)), int(state.range(1)));
-  StudioOptions options;
-  options.session.backend = Backend::cpu;
-  options.remember_recent = false;
   for (auto _ : state) {
-    MainWindow window(options);
-    window.resize(1200, 800);
-    window.show();
+    const auto window = shown_window({1200, 800});
     QElapsedTimer clock;
-    QEventLoop loop;
-    QObject::connect(&window, &MainWindow::sceneOpened, &loop, &QEventLoop::quit);
-    QObject::connect(&window, &MainWindow::openFailed, &loop, &QEventLoop::quit);
     clock.start();
     const StallWatch stalls;
-    window.open_scene(QString::fromStdString((folder / "scene.json").string()), {},
-                      QString::fromStdString((folder / "analysis").string()));
-    loop.exec();
-    // What the window does right after the scene is in (its first frame).
-    QTimer::singleShot(500, &loop, &QEventLoop::quit);
-    loop.exec();
+    open_in(*window, folder, true);
     state.SetIterationTime(double(clock.elapsed()) / 1e3);
     state.counters["longest_stall_ms"] = double(stalls.longest_ms());
   }
@@ -287,27 +310,13 @@ BENCHMARK(BM_OpenLargePhoto)
 // the full analysis is, and the longest the window froze over all of it.
 void BM_AnalyseLargePhoto(benchmark::State& state) {
   const fs::path folder = enlarged_room(int(state.range(0)), int(state.range(1)));
-  StudioOptions options;
-  options.session.backend = Backend::cpu;
-  options.remember_recent = false;
   for (auto _ : state) {
-    MainWindow window(options);
-    window.resize(1200, 800);
-    window.show();
+    const auto window = shown_window({1200, 800});
     QElapsedTimer clock;
-    double preview_s = 0.0;
-    QEventLoop loop;
-    QObject::connect(&window, &MainWindow::sceneOpened, [&] { preview_s = double(clock.elapsed()) / 1e3; });
-    QObject::connect(&window, &MainWindow::fullAnalysisDone, &loop, &QEventLoop::quit);
-    QObject::connect(&window, &MainWindow::openFailed, &loop, &QEventLoop::quit);
     clock.start();
     const StallWatch stalls;
-    window.open_scene(QString::fromStdString((folder / "scene.json").string()));
-    loop.exec();
-    QTimer::singleShot(500, &loop, &QEventLoop::quit);  // its first frames
-    loop.exec();
+    state.counters["preview_s"] = open_in(*window, folder, false);
     state.SetIterationTime(double(clock.elapsed()) / 1e3);
-    state.counters["preview_s"] = preview_s;
     state.counters["longest_stall_ms"] = double(stalls.longest_ms());
   }
   fs::remove_all(folder);
@@ -324,17 +333,9 @@ BENCHMARK(BM_AnalyseLargePhoto)
 // encoding, the picture painted. Counters: the median and 95th percentile.
 void BM_DragOnScreen(benchmark::State& state) {
   const fs::path folder = large_room(1280, 960);
-  StudioOptions options;
-  options.session.backend = Backend::cpu;
-  options.remember_recent = false;
-  MainWindow window(options);
-  window.resize(1600, 1000);
-  window.show();
-  QEventLoop loop;
-  QObject::connect(&window, &MainWindow::sceneOpened, &loop, &QEventLoop::quit);
-  window.open_scene(QString::fromStdString((folder / "scene.json").string()), {},
-                    QString::fromStdString((folder / "analysis").string()));
-  loop.exec();
+  const auto shown = shown_window({1600, 1000});
+  MainWindow& window = *shown;
+  open_in(window, folder, true);
   RelightSession& session = window.document()->session();
   session.wait_until_converged();
   const Light start = window.document()->light(0);

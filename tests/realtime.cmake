@@ -7,10 +7,8 @@ target_link_libraries(session_test PRIVATE relight_relight relight_example GTest
 # The new sky in a view twice the photo's size (25 s under the sanitizers)
 # is labelled slow: the sanitizer step runs a view of another size and the
 # new sky's preview and convergence in the session's other tests.
-gtest_discover_tests(session_test DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600
-                     TEST_FILTER "-Session.AViewOfAnotherSizeShowsTheNewSkyToo")
-add_test(NAME session_test.larger_view_new_sky COMMAND session_test --gtest_filter=Session.AViewOfAnotherSizeShowsTheNewSkyToo)
-set_tests_properties(session_test.larger_view_new_sky PROPERTIES TIMEOUT 600 LABELS slow)
+relight_discover_tests_but_slow(session_test 600 session_test.larger_view_new_sky
+                                Session.AViewOfAnotherSizeShowsTheNewSkyToo)
 
 # An animated rig's frames (relight/frame_sequence.h).
 add_executable(frame_sequence_test frame_sequence_test.cpp)

@@ -31,8 +31,7 @@ Image compose_relit(const RelitLayers& layers, const Image& illumination, float 
   return out;
 }
 
-NewIllumination::NewIllumination(const AnalysedScene& analysed)
-    : analysed_(analysed), bounce_albedo_(analysed.bounce_albedo()) {}
+NewIllumination::NewIllumination(const AnalysedScene& analysed) : analysed_(analysed) {}
 
 Environment rig_environment(const RigEnvironment& environment) {
   return environment.image ? Environment::from_probes({*environment.image}) : Environment::constant(environment.color);
@@ -79,14 +78,14 @@ IlluminationImages NewIllumination::render(const GBuffer& gbuffer, const Camera&
                                            bool first_surface_lights, const KeptPaths* kept) const {
   IntegratorOptions paths = integrator_options(options);
   paths.first_surface_lights = first_surface_lights;
-  const Integrator integrator(analysed_.rays(), lighting, &bounce_albedo_, paths);
+  const Integrator integrator(analysed_.rays(), lighting, &analysed_.bounce_albedo(), paths);
   return render_illumination(gbuffer, camera, integrator, illumination_options(options), progress, label, nullptr,
                              kept);
 }
 
 KeptPaths NewIllumination::keep_paths(const GBuffer& gbuffer, const RenderOptions& options, Progress& progress) const {
   const Lighting none;
-  const Integrator paths(analysed_.rays(), none, &bounce_albedo_, integrator_options(options));
+  const Integrator paths(analysed_.rays(), none, &analysed_.bounce_albedo(), integrator_options(options));
   return KeptPaths(gbuffer, paths, illumination_options(options), progress);
 }
 
@@ -108,15 +107,16 @@ IlluminationOptions NewIllumination::illumination_options(const RenderOptions& o
 
 Image NewIllumination::render_background(const GBuffer& gbuffer, const Camera& camera,
                                          const Lighting& lighting) const {
-  return relight::render_background(gbuffer, camera, Integrator(analysed_.rays(), lighting, &bounce_albedo_));
+  return relight::render_background(gbuffer, camera,
+                                    Integrator(analysed_.rays(), lighting, &analysed_.bounce_albedo()));
 }
 
 template <class Render>
 auto NewIllumination::render_highlights(const Lighting& lighting, const RenderOptions& options,
                                         const Render& render) const {
-  const Integrator integrator(analysed_.rays(), lighting, &bounce_albedo_, integrator_options(options));
+  const Integrator integrator(analysed_.rays(), lighting, &analysed_.bounce_albedo(), integrator_options(options));
   const ReflectedRadiance surfaces = [&](const SurfacePoint& hit, Rng& rng) -> Vec3 {
-    return bounce_albedo_.at(hit).cwiseProduct(integrator.illumination(hit, rng));
+    return analysed_.bounce_albedo().at(hit).cwiseProduct(integrator.illumination(hit, rng));
   };
   const IlluminationOptions settings = illumination_options(options);
   return render(SpecularReflection(integrator, analysed_.scene().gloss, surfaces), settings.paths_per_pixel,

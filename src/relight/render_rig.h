@@ -7,7 +7,6 @@
 #pragma once
 
 #include "analysis/analysed_scene.h"
-#include "analysis/surface_albedo.h"
 #include "render/render_illumination.h"
 #include "render/specular.h"
 
@@ -106,7 +105,6 @@ class NewIllumination {
   auto render_highlights(const Lighting& lighting, const RenderOptions& options, const Render& render) const;
 
   const AnalysedScene& analysed_;
-  const PhotoAlbedo& bounce_albedo_;
 };
 
 // Adds the highlights (NewIllumination::highlights; none where empty) to a

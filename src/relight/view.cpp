@@ -25,14 +25,12 @@ std::optional<Vec3> bilinear(const Image& image, const Vec2& pos) {
 }
 
 // The analysis's layers for a view of another size than the photo: each
-// surface sample's albedo from the photo (PhotoAlbedo, as bounce light sees
-// it); behind partly covered pixels the environment, behind empty ones the
-// photo where the view overlaps it.
-RelitLayers resampled_layers(const Scene& scene, const GBuffer& photo_gbuffer, const Analysis& analysis,
-                             const Environment& environment, const Camera& camera, const GBuffer& gbuffer) {
+// surface sample's albedo from the photo (as bounce light sees it:
+// AnalysedScene::bounce_albedo); behind partly covered pixels the
+// environment, behind empty ones the photo where the view overlaps it.
+RelitLayers resampled_layers(const Scene& scene, const PhotoAlbedo& albedo, const Environment& environment,
+                             const Camera& camera, const GBuffer& gbuffer) {
   const int w = gbuffer.width(), h = gbuffer.height(), spp = gbuffer.samples_per_pixel();
-  const PhotoAlbedo albedo(scene.camera, photo_gbuffer, analysis.albedo.albedo, analysis.albedo.mean,
-                           analysis.albedo.unseen_triangles);
   const ProbeEnvironment* probe = environment.probe_for(camera.position());
   RelitLayers layers{Image(w, h), Image(w, h)};
   tbb::parallel_for(0, h, [&](int y) {
@@ -84,7 +82,7 @@ RelightView::RelightView(const AnalysedScene& analysed, int width, int height, i
                                                samples_per_pixel > 0 ? samples_per_pixel : photo_gbuffer.samples_per_pixel(),
                                                analysis.options.seed, scene.path.string());
     gbuffer_ = owned_gbuffer_.get();
-    layers_ = resampled_layers(scene, photo_gbuffer, analysis, analysed.environment(), camera_, *gbuffer_);
+    layers_ = resampled_layers(scene, analysed.bounce_albedo(), analysed.environment(), camera_, *gbuffer_);
     coverage_ = &gbuffer_->coverage();
   }
   surfaces_ = PixelSurfaces::central_samples(*gbuffer_);
