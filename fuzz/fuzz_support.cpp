@@ -23,13 +23,15 @@ void remove_scratch_folder() {
 }  // namespace
 
 const fs::path& scratch_folder() {
-  static const fs::path folder = [] {
+  // Never destroyed: the exit handler that removes the folder is registered
+  // while the path is made, so a path object would be destroyed before it ran.
+  static const fs::path& folder = *[] {
     spdlog::set_level(spdlog::level::off);
     set_max_image_pixels(int64_t(1) << 16);  // 256 x 256: a forged size costs little, and no input needs more
     const fs::path p = fs::temp_directory_path() / ("relight_fuzz_" + std::to_string(::getpid()));
     fs::create_directories(p);
     std::atexit(remove_scratch_folder);
-    return p;
+    return new fs::path(p);
   }();
   return folder;
 }
