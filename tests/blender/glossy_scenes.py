@@ -55,6 +55,11 @@ GLOSSY = {
     'glossy_floor_bookcase': ('bookcase', {'floor': ('floor_tiles', 0.12, 0.5)}),
 }
 MATTE = {'matte_studio': 'studio', 'matte_bookcase': 'bookcase'}
+# Every material of a public scene glossy at the Principled BSDF's defaults (roughness 0.5, specular 0.5):
+# a room a new user models without touching the materials. Not committed (docs/benchmarks.md, "Materials
+# from the photo").
+EVERY_SURFACE = {'default_studio': 'studio', 'default_bookcase': 'bookcase'}
+DEFAULT_ROUGHNESS, DEFAULT_SPECULAR = 0.5, 0.5
 
 _add_light = gen['add_light']
 
@@ -83,8 +88,21 @@ def glossy_scene(name):
     return build
 
 
+def every_surface_scene(name):
+    def build():
+        gen['add_light'] = add_light_glossy_visible
+        S = gen['SCENES'][EVERY_SURFACE[name]]()
+        for m in sorted({s.material for o in gen['GEOM'] for s in o.material_slots if s.material}, key=lambda m: m.name):
+            gen['make_glossy'](m, DEFAULT_ROUGHNESS, DEFAULT_SPECULAR)
+            [n for n in m.node_tree.nodes if n.type == 'BSDF_PRINCIPLED'][0].distribution = 'GGX'
+        return S
+    return build
+
+
 for _n in GLOSSY:
     gen['SCENES'][_n] = glossy_scene(_n)
+for _n in EVERY_SURFACE:
+    gen['SCENES'][_n] = every_surface_scene(_n)
 for _n, _p in MATTE.items():
     gen['SCENES'][_n] = gen['SCENES'][_p]
 
@@ -92,10 +110,11 @@ gen['main']()
 
 # ---- glossy scenes: say which surfaces are glossy in scene.json and README.md
 args = gen['parse_args']()
-if args.scene in GLOSSY:
+if args.scene in GLOSSY or args.scene in EVERY_SURFACE:
     out = os.path.abspath(args.out)
-    surfaces = GLOSSY[args.scene][1]
     objs = [l.split()[1] for l in open(os.path.join(out, 'geometry.obj')) if l.startswith('o ')]
+    surfaces = GLOSSY[args.scene][1] if args.scene in GLOSSY else {
+        o: ('every material', DEFAULT_ROUGHNESS, DEFAULT_SPECULAR) for o in objs}
     missing = [o for o in surfaces if o not in objs]
     if missing:
         raise SystemExit('glossy_scenes.py: %s not among the objects of geometry.obj (%s)' % (missing, objs))
