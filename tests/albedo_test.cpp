@@ -1,11 +1,15 @@
 // recover_albedo on a synthetic photo made by its own model: a pixel that
 // covers a surface by a fraction c shows c a L + (1 - c) B (albedo a,
 // illumination L, background B). Where c and L are large enough the albedo
-// comes back exactly; elsewhere it is filled from the same surface.
+// comes back exactly; elsewhere it is filled from the same surface. And the
+// pixels where the illumination's edges lie off the photo's are marked.
 #include "analysis/albedo.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "analysis/illumination_alignment.h"
 #include "flat_walls.h"
 
 using namespace relight;
@@ -124,6 +128,28 @@ TEST(RecoverAlbedo, ABrightScaleIsNotTakenForImpossibleAlbedo) {
   EXPECT_GT(a.bright_bound, 1.25f * 1.5f);
   EXPECT_TRUE(a.as_divided.empty());
   EXPECT_LT(max_error(a.albedo.at(40, 18), 2.0f * true_albedo(40, 18)), 1e-5f);
+}
+
+// The analysis marks where the illumination's edges lie off the photo's
+// (unreliable.exr) without moving them unless asked: the pixels marked are
+// those align() would move, and the motion is the same.
+TEST(EdgeMismatch, MarksThePixelsAlignMoves) {
+  constexpr int w = 320, h = 240;  // matches are looked for up to w / 80 = 4 px away
+  const auto corner = [&](int edge_x, int edge_y) {
+    Image image(w, h, Vec3::Constant(0.2f));
+    for (int y = edge_y; y < h; ++y)
+      for (int x = edge_x; x < w; ++x) image.at(x, y) = Vec3::Constant(1.0f);
+    return image;
+  };
+  const IlluminationAlignment alignment(corner(150, 100));
+  const Image illumination = corner(153, 103);  // 3 px right and down
+  const IlluminationAlignment::Mismatch mismatch = alignment.mismatch(illumination);
+  const IlluminationAlignment::Aligned aligned = alignment.align(illumination);
+  EXPECT_EQ(mismatch.moved, aligned.mismatch.moved);
+  EXPECT_EQ(mismatch.motion_px, aligned.mismatch.motion_px);
+  EXPECT_GT(mismatch.motion_px, 2.0f);
+  EXPECT_GT(std::count(mismatch.moved.begin(), mismatch.moved.end(), 1), w);
+  EXPECT_NE(aligned.illumination.pixels, illumination.pixels);  // align() moved them
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The G-buffer-guided denoiser of the smooth illumination: it takes Monte
 // Carlo noise out of a flat surface while keeping its mean, never mixes two
-// surfaces, leaves the background alone and can be cancelled.
+// surfaces, leaves the background alone, gives the same in bands of rows as
+// at once, and can be cancelled.
 #include "render/denoise.h"
 
 #include <gtest/gtest.h>
@@ -100,6 +101,28 @@ TEST(Denoise, LeavesTheBackgroundAlone) {
         EXPECT_LT(std::abs(luminance(out.at(x, y)) - 1.0f), 0.3f);  // no background leaked in
       }
   EXPECT_GT(background, kW * kH / 3);
+}
+
+// A large view is filtered a band of rows at a time, each with the rows the
+// filter reaches beyond it: the result is the whole view's, bit for bit.
+TEST(Denoise, FiltersInBandsAsAtOnce) {
+  const Noisy n({{2.0f, -10.0f, 0.0f}, {3.0f, -10.0f, 10.0f}},
+                [](int x, int y) { return Vec3::Constant(x < kW / 2 ? 1.0f : 1.6f + 0.01f * float(y)); });
+  for (const int passes : {3, 5}) {
+    DenoiseOptions whole;
+    whole.passes = passes;
+    whole.band_rows = kH;
+    const Image at_once = denoise_illumination(n.noisy, n.variance, n.gbuffer, whole);
+    EXPECT_GT(rms_error(at_once, n.noisy), 0.5 * kSigma);  // it filtered
+    for (const int rows : {1, 5, 13, 30}) {
+      DenoiseOptions banded = whole;
+      banded.band_rows = rows;
+      const Image out = denoise_illumination(n.noisy, n.variance, n.gbuffer, banded);
+      size_t differ = 0;
+      for (size_t i = 0; i < out.size(); ++i) differ += out.pixels[i] != at_once.pixels[i];
+      EXPECT_EQ(differ, 0u) << passes << " passes, bands of " << rows << " rows";
+    }
+  }
 }
 
 TEST(Denoise, StopsWhenCancelled) {

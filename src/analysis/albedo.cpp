@@ -63,16 +63,21 @@ AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clip
   out.albedo = Image(w, h);
   out.albedo_coverage = Image(w, h);
 
-  std::vector<float> lum;
+  // One buffer, sized once (pushed into, it would hold twice the view's
+  // pixels while it grows): the illumination's luminances, then each divided
+  // pixel's largest channel.
+  std::vector<float> values;
+  values.reserve(size_t(std::count_if(g.coverage().begin(), g.coverage().end(), [](float c) { return c > 0.0f; })));
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      if (g.coverage(x, y) > 0.0f) lum.push_back(luminance(illum.surface.at(x, y)));
-  std::nth_element(lum.begin(), lum.begin() + lum.size() / 2, lum.end());
-  const float threshold = kMinRelativeLight * lum[lum.size() / 2];
+      if (g.coverage(x, y) > 0.0f) values.push_back(luminance(illum.surface.at(x, y)));
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  const float threshold = kMinRelativeLight * values[values.size() / 2];
 
   // known: 1 reliable, 0 to fill, -1 background (nothing to fill)
   std::vector<int8_t> known(size_t(w) * h, -1);
-  std::vector<float> brightest;  // each divided pixel's largest channel
+  std::vector<float>& brightest = values;  // each divided pixel's largest channel
+  brightest.clear();
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const float c = g.coverage(x, y);

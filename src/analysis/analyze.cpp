@@ -397,13 +397,18 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   // the pixels where they disagree are marked.
   const IlluminationAlignment alignment(scene.photo);
   const auto divide = [&](const IlluminationImages& illumination) {
-    IlluminationAlignment::Aligned aligned = alignment.align(illumination.surface);
-    AlbedoImages albedo =
-        options.align_edges
-            ? recover_albedo(photo, unreliable, {std::move(aligned.illumination), illumination.background}, gbuffer)
-            : recover_albedo(photo, unreliable, illumination, gbuffer);
-    albedo.edge_mismatch = std::move(aligned.moved);
-    albedo.edge_offset_px = aligned.motion_px;
+    AlbedoImages albedo;
+    IlluminationAlignment::Mismatch mismatch;
+    if (options.align_edges) {
+      IlluminationAlignment::Aligned aligned = alignment.align(illumination.surface);
+      mismatch = std::move(aligned.mismatch);
+      albedo = recover_albedo(photo, unreliable, {std::move(aligned.illumination), illumination.background}, gbuffer);
+    } else {
+      mismatch = alignment.mismatch(illumination.surface);
+      albedo = recover_albedo(photo, unreliable, illumination, gbuffer);
+    }
+    albedo.edge_mismatch = std::move(mismatch.moved);
+    albedo.edge_offset_px = mismatch.motion_px;
     return albedo;
   };
 
@@ -476,7 +481,10 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     // pass replaces are let go as soon as they are not needed: the
     // analysis's memory peaks here.
     result.illumination = {};
+    result.albedo.albedo_coverage = Image();  // the division below makes it again
+    photo_radiance.reset();                   // the bounce renders' alone
     IlluminationImages back = render_back(illumination_options(options), "rendered back");
+    direct.reset();  // the last render's
     result.residual = residual_of(photo, result.albedo.albedo, back.surface, result.coverage);
     std::vector<TriangleAlbedo> unseen = std::move(result.albedo.unseen_triangles);
     result.albedo = {};

@@ -104,39 +104,66 @@ cv::Mat long_edges(const cv::Mat& edges) {
 
 IlluminationAlignment::IlluminationAlignment(const Image& photo) : photo_edges_(edge_field(log_luminance(photo), 1)) {}
 
-IlluminationAlignment::Aligned IlluminationAlignment::align(const Image& surface_illumination) const {
+IlluminationAlignment::Moving IlluminationAlignment::moving_edges(const Image& surface_illumination) const {
   const int w = surface_illumination.width, h = surface_illumination.height;
-  Aligned out{surface_illumination, std::vector<uint8_t>(size_t(w) * h, 0)};
+  Moving out;
   if (photo_edges_.distance.cols != w || photo_edges_.distance.rows != h || photo_edges_.position.empty()) return out;
   const std::vector<EdgeMatch> matches = edge_matches(surface_illumination);
   const ImageMotion motion = fit_image_motion(matches, w, h);
   out.motion_px = motion.largest(w, h);
+  for (const EdgeMatch& m : matches) {
+    const float predicted = motion.across(m);
+    if (std::abs(predicted) > kAlignedPx && std::abs(predicted - m.offset) <= kMotionTolerancePx)
+      out.edges.push_back(m);
+  }
+  return out;
+}
+
+namespace {
+// Calls at(pixel index, squared distance) for each pixel of the band a moved
+// edge takes its illumination for: within its offset and kBandMarginPx.
+template <typename At>
+void for_band(const IlluminationAlignment::EdgeMatch& m, int w, int h, At at) {
+  const float r = std::abs(m.offset) + kBandMarginPx;
+  const int ri = int(std::ceil(r));
+  for (int dy = -ri; dy <= ri; ++dy)
+    for (int dx = -ri; dx <= ri; ++dx) {
+      const int nx = m.x + dx, ny = m.y + dy;
+      const float d2 = float(dx * dx + dy * dy);
+      if (nx < 0 || ny < 0 || nx >= w || ny >= h || d2 > r * r) continue;
+      at(size_t(ny) * w + nx, d2);
+    }
+}
+}  // namespace
+
+IlluminationAlignment::Mismatch IlluminationAlignment::mismatch(const Image& surface_illumination) const {
+  const int w = surface_illumination.width, h = surface_illumination.height;
+  const Moving moving = moving_edges(surface_illumination);
+  Mismatch out{std::vector<uint8_t>(size_t(w) * h, 0), moving.motion_px};
+  for (const EdgeMatch& m : moving.edges) for_band(m, w, h, [&](size_t i, float) { out.moved[i] = 1; });
+  return out;
+}
+
+IlluminationAlignment::Aligned IlluminationAlignment::align(const Image& surface_illumination) const {
+  const int w = surface_illumination.width, h = surface_illumination.height;
+  const Moving moving = moving_edges(surface_illumination);
+  Aligned out{surface_illumination, {std::vector<uint8_t>(size_t(w) * h, 0), moving.motion_px}};
   // Per pixel, the shift to take its illumination from: that of the nearest
   // illumination edge pixel whose band it lies in.
   std::vector<float> nearest(size_t(w) * h, std::numeric_limits<float>::max());
   std::vector<Vec2> shift(size_t(w) * h, Vec2::Zero());
-  for (const EdgeMatch& m : matches) {
-    const float predicted = motion.across(m);
-    if (std::abs(predicted) <= kAlignedPx || std::abs(predicted - m.offset) > kMotionTolerancePx) continue;
-    const float r = std::abs(m.offset) + kBandMarginPx;
-    const int ri = int(std::ceil(r));
-    for (int dy = -ri; dy <= ri; ++dy)
-      for (int dx = -ri; dx <= ri; ++dx) {
-        const int nx = m.x + dx, ny = m.y + dy;
-        const float d2 = float(dx * dx + dy * dy);
-        if (nx < 0 || ny < 0 || nx >= w || ny >= h || d2 > r * r) continue;
-        const size_t i = size_t(ny) * w + nx;
-        if (d2 >= nearest[i]) continue;
-        nearest[i] = d2;
-        shift[i] = m.offset * m.normal;
-      }
-  }
+  for (const EdgeMatch& m : moving.edges)
+    for_band(m, w, h, [&](size_t i, float d2) {
+      if (d2 >= nearest[i]) return;
+      nearest[i] = d2;
+      shift[i] = m.offset * m.normal;
+    });
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t i = size_t(y) * w + x;
       if (nearest[i] == std::numeric_limits<float>::max()) continue;
       out.illumination.pixels[i] = bilinear(surface_illumination, float(x) - shift[i].x(), float(y) - shift[i].y());
-      out.moved[i] = 1;
+      out.mismatch.moved[i] = 1;
     }
   return out;
 }

@@ -24,11 +24,16 @@ class IlluminationAlignment {
  public:
   explicit IlluminationAlignment(const Image& photo);  // the photo's edges, found once
 
-  struct Aligned {
-    Image illumination;          // the surface illumination, its edges where the photo has them
-    std::vector<uint8_t> moved;  // 1 per pixel whose illumination was taken from elsewhere
+  struct Mismatch {
+    std::vector<uint8_t> moved;  // 1 per pixel whose illumination align() takes from elsewhere
     float motion_px = 0.0f;      // how far the photo's edges lie from the illumination's: the motion's
                                  // largest length over the image, pixels
+  };
+  // Where the illumination's edges lie off the photo's, and how far; nothing moved.
+  Mismatch mismatch(const Image& surface_illumination) const;
+  struct Aligned {
+    Image illumination;  // the surface illumination, its edges where the photo has them
+    Mismatch mismatch;
   };
   Aligned align(const Image& surface_illumination) const;
 
@@ -41,6 +46,13 @@ class IlluminationAlignment {
 
  private:
   std::vector<EdgeMatch> edge_matches(const Image& surface_illumination) const;
+  // The matches the image's motion confirms, each an edge to move, and the
+  // motion's largest length (Mismatch::motion_px).
+  struct Moving {
+    std::vector<EdgeMatch> edges;
+    float motion_px = 0.0f;
+  };
+  Moving moving_edges(const Image& surface_illumination) const;
 
   EdgeField photo_edges_;  // full resolution
 };

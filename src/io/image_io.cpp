@@ -146,7 +146,7 @@ void write_pixels(const fs::path& path, const ImageSpec& spec, const void* data,
 }  // namespace
 
 int64_t default_max_image_pixels() {
-  constexpr int64_t kFixedBytes = int64_t(150) << 20, kBytesPerPixel = 135, kWithoutMemory = 25'000'000;
+  constexpr int64_t kFixedBytes = int64_t(300) << 20, kBytesPerPixel = 120, kWithoutMemory = 25'000'000;
   const int64_t memory = physical_memory_bytes();
   return memory > 2 * kFixedBytes ? (memory / 2 - kFixedBytes) / kBytesPerPixel : kWithoutMemory;
 }

@@ -17,9 +17,9 @@ namespace relight {
 // or RELIGHT_MAX_PIXELS (docs/reliability.md).
 //
 // By default, the largest photo whose analysis fits in half of this
-// machine's memory (an analysis peaks at about 150 MiB + 135 bytes a pixel
+// machine's memory (an analysis peaks at about 300 MiB + 120 bytes a pixel
 // beyond its mesh: docs/benchmarks.md, "Photo size"; the other half is left
-// to the mesh and whatever else runs): 94 Mpixel on 24 GiB, 30 on 8, so a
+// to the mesh and whatever else runs): 104 Mpixel on 24 GiB, 33 on 8, so a
 // 45-Mpixel camera photo opens where it can be analysed. 25 Mpixel where the
 // memory cannot be read.
 int64_t default_max_image_pixels();

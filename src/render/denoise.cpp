@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -62,6 +63,35 @@ Image denoise_illumination(const Image& noisy, std::vector<float> variance, cons
     std::swap(variance, next_variance);
   }
   return current;
+}
+
+namespace {
+// Rows a pass of step 2^k reaches each way is 2 x 2^k: all passes together,
+// 2 (2^passes - 1).
+int filter_reach(int passes) { return 2 * ((1 << passes) - 1); }
+// About this many pixels to a band by default (4 M: 200 MB of surfaces and
+// images; the rows beyond it cost a sixth more filtering at 24 Mpixel).
+constexpr int64_t kBandPixels = int64_t(1) << 22;
+}  // namespace
+
+Image denoise_illumination(const Image& noisy, const std::vector<float>& variance, const GBuffer& gbuffer,
+                           const DenoiseOptions& options) {
+  const int w = noisy.width, h = noisy.height, reach = filter_reach(options.passes);
+  const int band = options.band_rows > 0 ? options.band_rows : std::max(reach, int(kBandPixels / std::max(w, 1)));
+  if (band >= h) return denoise_illumination(noisy, variance, PixelSurfaces::central_samples(gbuffer), options);
+  Image out(w, h);
+  for (int first = 0; first < h; first += band) {
+    const int end = std::min(h, first + band), top = std::max(0, first - reach), bottom = std::min(h, end + reach);
+    const size_t from = size_t(top) * w, to = size_t(bottom) * w;
+    Image rows(w, bottom - top);
+    std::copy(noisy.pixels.begin() + ptrdiff_t(from), noisy.pixels.begin() + ptrdiff_t(to), rows.pixels.begin());
+    const Image filtered = denoise_illumination(
+        rows, std::vector<float>(variance.begin() + ptrdiff_t(from), variance.begin() + ptrdiff_t(to)),
+        PixelSurfaces::central_samples(gbuffer, top, bottom), options);
+    const auto kept = filtered.pixels.begin() + ptrdiff_t(size_t(first - top) * w);
+    std::copy(kept, kept + ptrdiff_t(size_t(end - first) * w), out.pixels.begin() + ptrdiff_t(size_t(first) * w));
+  }
+  return out;
 }
 
 }  // namespace relight

@@ -20,6 +20,9 @@ struct DenoiseOptions {
   float normal_power = 64.0f;
   float plane_sigma = 0.01f;    // plane distance, relative to the depth
   const Progress* progress = nullptr;  // if given, polled between passes: throws Cancelled once cancelled
+  // The G-buffer's overload filters this many rows at a time (0: about 4
+  // Mpixel's worth); the result does not depend on it.
+  int band_rows = 0;
 };
 
 // variance: per pixel, the variance of the pixel's mean luminance.
@@ -27,9 +30,11 @@ struct DenoiseOptions {
 // the pixels a sparse render traced).
 Image denoise_illumination(const Image& noisy, std::vector<float> variance, const PixelSurfaces& surfaces,
                            const DenoiseOptions& options = {});
-inline Image denoise_illumination(const Image& noisy, std::vector<float> variance, const GBuffer& gbuffer,
-                                  const DenoiseOptions& options = {}) {
-  return denoise_illumination(noisy, std::move(variance), PixelSurfaces::central_samples(gbuffer), options);
-}
+// The same, the surfaces a G-buffer's centre samples. The image is filtered
+// in bands of rows, each with the rows the filter reaches beyond it, so that
+// what it holds besides the images grows with the band, not the view: the
+// result is the whole image's filtered at once, bit for bit.
+Image denoise_illumination(const Image& noisy, const std::vector<float>& variance, const GBuffer& gbuffer,
+                           const DenoiseOptions& options = {});
 
 }  // namespace relight

@@ -145,14 +145,18 @@ Vec2 GBuffer::sample_position(int x, int y, int k) const {
 }
 
 PixelSurfaces PixelSurfaces::central_samples(const GBuffer& gbuffer) {
+  return central_samples(gbuffer, 0, gbuffer.height());
+}
+
+PixelSurfaces PixelSurfaces::central_samples(const GBuffer& gbuffer, int first_row, int end_row) {
   PixelSurfaces s;
   s.width = gbuffer.width();
-  s.height = gbuffer.height();
+  s.height = end_row - first_row;
   s.surface.resize(size_t(s.width) * s.height);
   s.hit.resize(s.surface.size());
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {
-      const GBufferSample& g = gbuffer.central(x, y);
+      const GBufferSample& g = gbuffer.central(x, first_row + y);
       const size_t i = size_t(y) * s.width + x;
       s.surface[i] = g.surface;
       s.hit[i] = g.hit;

@@ -112,6 +112,8 @@ struct PixelSurfaces {
   std::vector<uint8_t> hit;
 
   static PixelSurfaces central_samples(const GBuffer& gbuffer);
+  // Rows [first_row, end_row) alone.
+  static PixelSurfaces central_samples(const GBuffer& gbuffer, int first_row, int end_row);
 };
 
 }  // namespace relight

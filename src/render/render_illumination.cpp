@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "render/pixel_estimate.h"
@@ -185,7 +186,7 @@ Image render_direct_part(const GBuffer& g, const Integrator& integrator, const I
   DenoiseOptions direct_options;
   direct_options.luminance_sigma = 1.0f;
   direct_options.progress = &progress;
-  return denoise_illumination(image, std::move(variance), g, direct_options);
+  return denoise_illumination(image, variance, g, direct_options);
 }
 
 KeptPaths::KeptPaths(const GBuffer& g, const Integrator& paths, const IlluminationOptions& options, Progress& progress,
@@ -335,9 +336,15 @@ Image render_background(const GBuffer& gbuffer, const Camera& camera, const Inte
   return out;
 }
 
+namespace {
+void add_into(Image& sum, const Image& part) {
+  for (size_t i = 0; i < sum.size(); ++i) sum.pixels[i] += part.pixels[i];
+}
+}  // namespace
+
 Image IlluminationParts::total() const {
   Image sum = direct;
-  for (size_t i = 0; i < sum.size(); ++i) sum.pixels[i] += indirect.pixels[i];
+  add_into(sum, indirect);
   return sum;
 }
 
@@ -354,10 +361,14 @@ IlluminationImages render_illumination(const GBuffer& gbuffer, const Camera& cam
   // Nothing to light with (a rig of lights switched off, no environment):
   // no path needs tracing.
   if (integrator.is_dark()) return {Image(gbuffer.width(), gbuffer.height()), Image(gbuffer.width(), gbuffer.height())};
-  IlluminationParts parts{
-      direct ? *direct : render_direct_part(gbuffer, integrator, options, progress, label + ": direct light"),
-      render_indirect_part(gbuffer, integrator, options, progress, label, kept)};
-  return {parts.total(), render_background(gbuffer, camera, integrator)};
+  // The direct light is added into the indirect part's image: a render holds
+  // no copy of a direct light given, nor a third image for their sum.
+  std::optional<Image> own_direct;
+  if (!direct) own_direct = render_direct_part(gbuffer, integrator, options, progress, label + ": direct light");
+  Image surface = render_indirect_part(gbuffer, integrator, options, progress, label, kept);
+  add_into(surface, direct ? *direct : *own_direct);
+  own_direct.reset();
+  return {std::move(surface), render_background(gbuffer, camera, integrator)};
 }
 
 Image synthesize_photo(const GBuffer& gbuffer, const Camera& camera, const Integrator& integrator,
