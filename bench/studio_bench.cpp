@@ -281,20 +281,27 @@ double open_in(MainWindow& window, const fs::path& folder, bool analysed) {
   return shown_s;
 }
 
+// One iteration of the benches below: a window opens the scene in `folder`
+// (open_in), the iteration's time is how long that took, and the counter
+// longest_stall_ms how long the window froze meanwhile. Returns the seconds
+// until the scene was first shown.
+double time_opening(benchmark::State& state, const fs::path& folder, bool analysed) {
+  const auto window = shown_window({1200, 800});
+  QElapsedTimer clock;
+  clock.start();
+  const StallWatch stalls;
+  const double shown_s = open_in(*window, folder, analysed);
+  state.SetIterationTime(double(clock.elapsed()) / 1e3);
+  state.counters["longest_stall_ms"] = double(stalls.longest_ms());
+  return shown_s;
+}
+
 // relight studio opening an analysed photo of w x h: the time until the
 // scene is shown, and the longest the window's event loop went without
 // turning meanwhile (a timer asks every 5 ms): how long the window froze.
 void BM_OpenLargePhoto(benchmark::State& state) {
   const fs::path folder = large_room(int(state.range(0)), int(state.range(1)));
-  for (auto _ : state) {
-    const auto window = shown_window({1200, 800});
-    QElapsedTimer clock;
-    clock.start();
-    const StallWatch stalls;
-    open_in(*window, folder, true);
-    state.SetIterationTime(double(clock.elapsed()) / 1e3);
-    state.counters["longest_stall_ms"] = double(stalls.longest_ms());
-  }
+  for (auto _ : state) time_opening(state, folder, true);
   fs::remove_all(folder);
 }
 BENCHMARK(BM_OpenLargePhoto)
@@ -310,15 +317,7 @@ BENCHMARK(BM_OpenLargePhoto)
 // the full analysis is, and the longest the window froze over all of it.
 void BM_AnalyseLargePhoto(benchmark::State& state) {
   const fs::path folder = enlarged_room(int(state.range(0)), int(state.range(1)));
-  for (auto _ : state) {
-    const auto window = shown_window({1200, 800});
-    QElapsedTimer clock;
-    clock.start();
-    const StallWatch stalls;
-    state.counters["preview_s"] = open_in(*window, folder, false);
-    state.SetIterationTime(double(clock.elapsed()) / 1e3);
-    state.counters["longest_stall_ms"] = double(stalls.longest_ms());
-  }
+  for (auto _ : state) state.counters["preview_s"] = time_opening(state, folder, false);
   fs::remove_all(folder);
 }
 BENCHMARK(BM_AnalyseLargePhoto)

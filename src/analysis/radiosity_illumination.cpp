@@ -94,8 +94,7 @@ IlluminationImages RadiosityIllumination::render(const SurfaceAlbedo& albedo, co
                                           : view_gather_->direct();
   IlluminationImages out{illumination_from_nodes(gbuffer_, camera_, *view_, *view_rays_, view_irradiance),
                          background_};
-  if (!direct_.empty())
-    for (size_t i = 0; i < out.surface.size(); ++i) out.surface.pixels[i] += direct_.pixels[i];
+  if (!direct_.empty()) add_into(out.surface, direct_);
   return out;
 }
 

@@ -41,6 +41,10 @@ Image tonemap_reinhard_srgb(const Image& linear) {
   return out;
 }
 
+void add_into(Image& sum, const Image& part) {
+  for (size_t i = 0; i < sum.size(); ++i) sum.pixels[i] += part.pixels[i];
+}
+
 Image clip01(const Image& image) {
   Image out = image;
   for (auto& p : out.pixels) p = p.cwiseMax(0.0f).cwiseMin(1.0f);

@@ -42,6 +42,9 @@ struct Image {
   const Vec3& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
 };
 
+// sum += part, pixel by pixel (the two the same size): no third image.
+void add_into(Image& sum, const Image& part);
+
 // Peak signal-to-noise ratio in dB of `test` against `reference` over the
 // pixels whose weight is > 0 (weight null: all pixels), with peak 1.
 double psnr(const Image& test, const Image& reference, const std::vector<float>* weight = nullptr);

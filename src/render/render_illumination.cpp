@@ -336,12 +336,6 @@ Image render_background(const GBuffer& gbuffer, const Camera& camera, const Inte
   return out;
 }
 
-namespace {
-void add_into(Image& sum, const Image& part) {
-  for (size_t i = 0; i < sum.size(); ++i) sum.pixels[i] += part.pixels[i];
-}
-}  // namespace
-
 Image IlluminationParts::total() const {
   Image sum = direct;
   add_into(sum, indirect);
