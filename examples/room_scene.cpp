@@ -88,9 +88,9 @@ Scene room_scene(int width, int height) {
   return s;
 }
 
-RoomAlbedo room_albedo() {
+RoomAlbedo room_albedo(RoomPaint paint) {
   TriangleMesh m;
-  return RoomAlbedo(build_room(m));
+  return RoomAlbedo(build_room(m), paint);
 }
 
 Lighting room_lighting(const Scene& room, const std::vector<Light>& lights, float environment_scale) {
@@ -109,8 +109,8 @@ Image room_photo(const Scene& room, const Camera& camera, const RayScene& rays, 
   return synthesize_photo(samples, camera, integrator, albedo, paths, seed, Progress::silent());
 }
 
-Image room_albedo_image(const GBuffer& gbuffer) {
-  const RoomAlbedo albedo = room_albedo();
+Image room_albedo_image(const GBuffer& gbuffer, RoomPaint paint) {
+  const RoomAlbedo albedo = room_albedo(paint);
   Image image(gbuffer.width(), gbuffer.height());
   for (int y = 0; y < gbuffer.height(); ++y)
     for (int x = 0; x < gbuffer.width(); ++x)
@@ -127,10 +127,14 @@ Vec3 RoomAlbedo::at(const SurfacePoint& p) const {
       const bool odd = (int(std::floor(x.x() / 0.5f)) + int(std::floor(x.y() / 0.5f))) & 1;
       return odd ? Vec3(0.75f, 0.72f, 0.65f) : Vec3(0.25f, 0.22f, 0.2f);
     }
-    case kBackWall:  // plaster with a terracotta band
+    case kBackWall:
+      if (paint_ == RoomPaint::coloured) return Vec3(0.75f, 0.55f, 0.2f);
+      // plaster with a terracotta band
       return (x.z() > 0.9f && x.z() < 1.2f) ? Vec3(0.65f, 0.3f, 0.2f) : Vec3(0.8f, 0.78f, 0.72f);
     case kLeftWall:
-    case kRightWall: return Vec3(0.55f, 0.65f, 0.55f);
+      return paint_ == RoomPaint::coloured ? Vec3(0.25f, 0.4f, 0.7f) : Vec3(0.55f, 0.65f, 0.55f);
+    case kRightWall:
+      return paint_ == RoomPaint::coloured ? Vec3(0.3f, 0.6f, 0.3f) : Vec3(0.55f, 0.65f, 0.55f);
     case kBlock: return Vec3(0.15f, 0.3f, 0.7f);
     case kBall: return Vec3(0.8f, 0.12f, 0.1f);
   }

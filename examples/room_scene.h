@@ -18,20 +18,27 @@ namespace relight::example {
 // The photo is left empty: render it with room_photo.
 Scene room_scene(int width, int height);
 
-// The room's true albedo: a checker floor, plaster walls with a soft band,
-// a blue block and a red ball.
+// How the room's walls are painted: plaster (near grey) with a terracotta
+// band, or each wall a colour of its own (ochre at the back, blue at the
+// left, green at the right).
+enum class RoomPaint { plaster, coloured };
+
+// The room's true albedo: a checker floor, the walls as painted, a blue
+// block and a red ball.
 class RoomAlbedo final : public SurfaceAlbedo {
  public:
-  explicit RoomAlbedo(std::vector<int> object_of_triangle) : object_(std::move(object_of_triangle)) {}
+  RoomAlbedo(std::vector<int> object_of_triangle, RoomPaint paint)
+      : object_(std::move(object_of_triangle)), paint_(paint) {}
   Vec3 at(const SurfacePoint& p) const override;
 
  private:
   std::vector<int> object_;
+  RoomPaint paint_;
 };
-RoomAlbedo room_albedo();
+RoomAlbedo room_albedo(RoomPaint paint = RoomPaint::plaster);
 // The true albedo each pixel of `gbuffer` shows, weighted by its coverage
 // (0 on the background), as a renderer's diffuse-colour pass: albedo_gt.exr.
-Image room_albedo_image(const GBuffer& gbuffer);
+Image room_albedo_image(const GBuffer& gbuffer, RoomPaint paint = RoomPaint::plaster);
 
 // The room lit by `lights` and its background times environment_scale.
 Lighting room_lighting(const Scene& room, const std::vector<Light>& lights, float environment_scale = 1.0f);

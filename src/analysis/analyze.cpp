@@ -275,25 +275,26 @@ class PlannedJob {
   Progress& progress_;
 };
 
-// The highlights of the photo's glossy surfaces under the scene's
-// `lighting`: a reflected ray that meets a surface the photo (or a probe)
-// shows takes the radiance shown there, elsewhere a path's light off the
-// mid grey surfaces unseen take before any albedo is known.
+}  // namespace
+
 Image photo_highlights(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Lighting& lighting,
-                       const PhotoRadiance* photo_radiance, const AnalysisOptions& options, Progress& progress) {
+                       const SurfaceGloss& gloss, const PhotoRadiance* photo_radiance, const AnalysisOptions& options,
+                       Progress& progress, const std::string& label) {
   const UniformAlbedo unseen(AlbedoImages().mean);
   IntegratorOptions integrator_options;
   integrator_options.max_bounces = options.max_bounces;
-  integrator_options.gloss = &scene.gloss;
+  integrator_options.gloss = &gloss;
   const Integrator integrator(rays, lighting, &unseen, integrator_options, photo_radiance);
   const ReflectedRadiance surfaces = [&](const SurfacePoint& hit, Rng& rng) -> Vec3 {
     if (photo_radiance)
       if (const std::optional<Vec3> shown = photo_radiance->at(hit)) return *shown;
     return unseen.at(hit).cwiseProduct(integrator.illumination(hit, rng));
   };
-  const SpecularReflection specular(integrator, scene.gloss, surfaces);
-  return render_specular(gbuffer, scene.camera, specular, options.paths_per_pixel, options.seed, progress);
+  const SpecularReflection specular(integrator, gloss, surfaces);
+  return render_specular(gbuffer, scene.camera, specular, options.paths_per_pixel, options.seed, progress, label);
 }
+
+namespace {
 
 // Takes c x specular off each pixel of `photo` (c its coverage), and returns
 // 1 per pixel where that was over kHighlightShare of it.
@@ -355,7 +356,8 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   if (glossy) {
     // The highlights are taken off the photo in place: the photo's radiance
     // reads it, and what a surface bounces on is its diffuse light.
-    result.specular = photo_highlights(scene, rays, gbuffer, lighting, photo_radiance.get(), options, progress);
+    result.specular =
+        photo_highlights(scene, rays, gbuffer, lighting, scene.gloss, photo_radiance.get(), options, progress);
     result.highlights = take_off_highlights(photo_own, result.specular, result.coverage);
     if (unreliable.empty()) unreliable.assign(result.highlights.size(), 0);
     for (size_t i = 0; i < unreliable.size(); ++i) unreliable[i] |= result.highlights[i];

@@ -118,6 +118,17 @@ struct Analysis {
 // uncertain values.
 inline constexpr float kHighlightShare = 0.5f;
 
+class PhotoRadiance;
+
+// The highlights `gloss` would show under the scene's `lighting`, as the
+// photo was taken: a reflected ray that meets a surface the photo (or a
+// probe) shows takes the radiance shown there (`photo_radiance`, where
+// given), elsewhere a path's light off the mid grey surfaces unseen take
+// before any albedo is known. `options`: its paths, seed and bounces.
+Image photo_highlights(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Lighting& lighting,
+                       const SurfaceGloss& gloss, const PhotoRadiance* photo_radiance, const AnalysisOptions& options,
+                       Progress& progress, const std::string& label = "highlights");
+
 // The camera an analysis with `options` sees `scene` through: registered
 // to the photo where it is visibly off and the options allow (the scene's
 // camera is then set to it, and it is returned).

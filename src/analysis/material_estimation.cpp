@@ -3,9 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <set>
 
+#include "analysis/photo_radiance.h"
 #include "analysis/probe_exposure.h"
 #include "analysis/strategy.h"
 #include "core/error.h"
@@ -27,6 +31,14 @@ constexpr float kMinSpecular = 0.05f;
 // The pixel offsets the gradients are taken over: a sharp highlight shows
 // at one pixel, a broad one over several.
 constexpr int kSteps[] = {1, 2, 4};
+// A broad sheen's steps, in parts of the view's width (a 40th, 20th and
+// 10th: the scene's scale, whatever the photo's size), and the jackknife's
+// blocks (a tenth of the width: as far as the longest step).
+constexpr int kBroadStepsPerWidth[] = {40, 20, 10};
+constexpr int kBlocksPerWidth = 10;
+// About the most pixels a broad fit takes as the first of its pairs (a
+// larger view is sampled on a grid).
+constexpr double kBroadPixels = 5e5;
 
 float median_of(std::vector<float> v) {
   if (v.empty()) return 0.0f;
@@ -55,7 +67,8 @@ double huber_loss(const std::vector<float>& e, float threshold) {
 // its illumination.
 struct ViewPixels {
   std::vector<int32_t> object;  // per pixel: the object shown whole and unclipped, or -1
-  std::vector<float> shading;   // photo / illumination (mean of the channels)
+  std::vector<Vec3> colour;     // photo / illumination
+  std::vector<float> shading;   // its channels' mean
 };
 
 // The object every sample of pixel (x, y) sees where one does, all of it
@@ -78,6 +91,7 @@ ViewPixels view_pixels(const Scene& scene, const GBuffer& gbuffer, const Analysi
   const int w = gbuffer.width(), h = gbuffer.height();
   ViewPixels v;
   v.object.assign(size_t(w) * h, -1);
+  v.colour.assign(size_t(w) * h, Vec3::Zero());
   v.shading.assign(size_t(w) * h, 0.0f);
   const Image& illumination = analysis.illumination.surface;
   std::vector<GBufferSample> samples(size_t(gbuffer.samples_per_pixel()));
@@ -90,7 +104,8 @@ ViewPixels view_pixels(const Scene& scene, const GBuffer& gbuffer, const Analysi
       const Vec3& e = illumination.pixels[i];
       if (e.minCoeff() <= 1e-4f * std::max(e.maxCoeff(), 1e-12f) || e.maxCoeff() <= 0.0f) continue;
       v.object[i] = int32_t(*object);
-      v.shading[i] = photo.pixels[i].cwiseQuotient(e).mean();
+      v.colour[i] = photo.pixels[i].cwiseQuotient(e);
+      v.shading[i] = v.colour[i].mean();
     }
   return v;
 }
@@ -113,6 +128,81 @@ std::vector<std::vector<float>> differences(const ViewPixels& view, const std::v
   return d;
 }
 
+// An object's pixels for a broad sheen's fit, on a grid over the view (each
+// pixel of it up to half a megapixel): the pixels, and the pairs a broad step
+// apart both on the object, with the jackknife block of the first.
+struct BroadPairs {
+  std::vector<uint32_t> pixels;
+  std::vector<uint32_t> first, second, block;
+};
+
+std::vector<BroadPairs> broad_pairs(const ViewPixels& view, int w, int h, size_t objects) {
+  std::vector<BroadPairs> pairs(objects);
+  const int stride = std::max(1, int(std::lround(std::sqrt(double(w) * h / kBroadPixels))));
+  const int block = std::max(1, w / kBlocksPerWidth), blocks_across = (w + block - 1) / block;
+  for (int y = 0; y < h; y += stride)
+    for (int x = 0; x < w; x += stride) {
+      const size_t i = size_t(y) * w + x;
+      const int32_t o = view.object[i];
+      if (o < 0) continue;
+      BroadPairs& p = pairs[size_t(o)];
+      p.pixels.push_back(uint32_t(i));
+      const uint32_t b = uint32_t((y / block) * blocks_across + x / block);
+      for (const int parts : kBroadStepsPerWidth) {
+        const int step = std::max(1, w / parts);
+        for (const size_t j : {x + step < w ? i + step : i, y + step < h ? i + size_t(step) * w : i})
+          if (j != i && view.object[j] == o)
+            p.first.push_back(uint32_t(i)), p.second.push_back(uint32_t(j)), p.block.push_back(b);
+      }
+    }
+  return pairs;
+}
+
+// Two unit vectors across the plane of colours at right angles to `c`: the
+// part of a change in shading that scaling c (the light's own errors, or a
+// texture's light and dark) cannot make.
+std::array<Vec3, 2> across_colour(const Vec3& c) {
+  const Vec3 n = c.normalized();
+  int least = 0;
+  n.cwiseAbs().minCoeff(&least);
+  const Vec3 u = n.cross(Vec3::Unit(least)).normalized();
+  return {u, n.cross(u)};
+}
+
+// The shading colour of `objects`: their pixels' median in each channel.
+Vec3 median_colour(const ViewPixels& view, const std::vector<BroadPairs>& pairs, const std::vector<uint32_t>& objects) {
+  Vec3 c;
+  for (int channel = 0; channel < 3; ++channel) {
+    std::vector<float> v;
+    for (const uint32_t o : objects)
+      for (const uint32_t i : pairs[o].pixels) v.push_back(view.colour[i][channel]);
+    c[channel] = median_of(std::move(v));
+  }
+  return c;
+}
+
+// A broad sheen's fit for one unit at one roughness: the changes over its
+// pairs of the shading and of the predicted highlight / illumination
+// (`predicted`), each in the two colours across `colour`.
+struct BroadFit {
+  HighlightFit fit;
+  std::vector<float> dx, dy;    // the changes it was fitted to
+  std::vector<uint32_t> block;  // each one's block of the view
+};
+BroadFit fit_broad_sheen(const std::vector<const BroadPairs*>& pairs, const ViewPixels& view,
+                         const std::vector<Vec3>& predicted, const Vec3& colour) {
+  const std::array<Vec3, 2> across = across_colour(colour);
+  BroadFit f;
+  for (const BroadPairs* p : pairs)
+    for (size_t k = 0; k < p->first.size(); ++k) {
+      const Vec3 x = predicted[p->second[k]] - predicted[p->first[k]];
+      const Vec3 y = view.colour[p->second[k]] - view.colour[p->first[k]];
+      for (const Vec3& u : across) f.dx.push_back(x.dot(u)), f.dy.push_back(y.dot(u)), f.block.push_back(p->block[k]);
+    }
+  f.fit = fit_highlight(f.dx, f.dy, 1.0f / kDefaultSpecular);
+  return f;
+}
+
 // The highlights every object in `glossy` would show at `roughness`, at the
 // default specular: of the scene's lights and environment. The surfaces the
 // gloss mirrors are left out: predicted from the photo, their pattern
@@ -129,6 +219,79 @@ Image predicted_highlights(const Scene& scene, const RayScene& rays, const GBuff
   const SpecularReflection specular(integrator, gloss, nothing_mirrored);
   return render_specular(gbuffer, scene.camera, specular, options.paths_per_pixel, options.seed, progress,
                          fmt::format("highlights at roughness {:.2f}", roughness));
+}
+
+// The units of `estimates` left matte that are coloured, tried for a broad
+// sheen: the highlights their gloss would show as the photo was taken (the
+// surfaces it mirrors as the photo shows them) at each roughness, the one
+// whose changes over broad steps, across the unit's colour, explain most
+// of its shading's, kept where its strength stands clear of none.
+void find_broad_sheens(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Analysis& analysis,
+                       const Lighting& lighting, const Image& photo, const ViewPixels& view,
+                       const std::vector<EstimationUnit>& units, std::vector<MaterialEstimate>& estimates,
+                       const MaterialEstimationOptions& options, Progress& progress) {
+  const int w = gbuffer.width(), h = gbuffer.height();
+  const std::vector<BroadPairs> pairs = broad_pairs(view, w, h, scene.mesh.objects.size());
+  std::vector<size_t> tried;
+  std::vector<Vec3> colour;
+  std::vector<std::string> candidates;
+  for (size_t k = 0; k < units.size(); ++k) {
+    MaterialEstimate& m = estimates[k];
+    if (m.gloss) continue;
+    const Vec3 c = median_colour(view, pairs, units[k].objects);
+    if (c.maxCoeff() <= 0.0f || 1.0f - c.minCoeff() / c.maxCoeff() < kMinChroma) {
+      m.reason += "; grey, so a broad sheen would not be told from its light";
+      continue;
+    }
+    std::set<uint32_t> blocks;
+    for (const uint32_t o : units[k].objects) blocks.insert(pairs[o].block.begin(), pairs[o].block.end());
+    if (blocks.size() < kMinBlocks) {
+      m.reason += "; too small a part of the view to tell a broad sheen on";
+      continue;
+    }
+    tried.push_back(k), colour.push_back(c);
+    candidates.insert(candidates.end(), m.objects.begin(), m.objects.end());
+  }
+  if (tried.empty()) return;
+  std::unique_ptr<PhotoRadiance> shown;
+  if (analysis.options.bounce_source == BounceSource::photo)
+    shown = std::make_unique<PhotoRadiance>(scene.camera, gbuffer, photo, scene.probes, rays, scene.lights);
+  AnalysisOptions render = analysis.options;
+  render.paths_per_pixel = options.paths_per_pixel, render.seed = options.seed;
+  std::vector<BroadFit> best(tried.size());
+  std::vector<float> best_roughness(tried.size(), 0.0f);
+  std::vector<Vec3> predicted(size_t(w) * h, Vec3::Zero());
+  for (const float roughness : kRoughnessGrid) {
+    std::map<std::string, Gloss> materials;
+    for (const std::string& name : candidates) materials[name] = Gloss{roughness, kDefaultSpecular};
+    const Image highlights =
+        photo_highlights(scene, rays, gbuffer, lighting, SurfaceGloss(materials, scene.mesh), shown.get(), render,
+                         progress, fmt::format("sheens at roughness {:.2f}", roughness));
+    for (size_t i = 0; i < predicted.size(); ++i)
+      if (view.object[i] >= 0)
+        predicted[i] = highlights.pixels[i].cwiseQuotient(analysis.illumination.surface.pixels[i]);
+    for (size_t t = 0; t < tried.size(); ++t) {
+      std::vector<const BroadPairs*> unit_pairs;
+      for (const uint32_t o : units[tried[t]].objects) unit_pairs.push_back(&pairs[o]);
+      BroadFit fit = fit_broad_sheen(unit_pairs, view, predicted, colour[t]);
+      // A sheen is fainter than a dielectric's brightest: a fit held at that
+      // bound is something else's shape (a checker's colours).
+      const bool within = fit.fit.scale > 0.0f && fit.fit.scale < 1.0f / kDefaultSpecular;
+      if (within && fit.fit.explained > best[t].fit.explained) best[t] = std::move(fit), best_roughness[t] = roughness;
+    }
+  }
+  for (size_t t = 0; t < tried.size(); ++t) {
+    MaterialEstimate& m = estimates[tried[t]];
+    const float specular = kDefaultSpecular * best[t].fit.scale;
+    m.significance = jackknife_significance(best[t].dx, best[t].dy, best[t].block);
+    if (*m.significance < kMinSignificance)
+      m.reason += fmt::format("; a broad sheen stands {:.1f} standard errors clear of none ({:.1f} needed)",
+                              *m.significance, kMinSignificance);
+    else if (specular < kMinSpecular)
+      m.reason += fmt::format("; its broad sheen is faint (specular {:.3f}, under {:.2f})", specular, kMinSpecular);
+    else
+      m.gloss = Gloss{best_roughness[t], specular}, m.sheen = true, m.reason.clear();
+  }
 }
 
 // The photo as the analysis divided it: in the probes' units, less the
@@ -156,6 +319,11 @@ std::string estimate_name(const MaterialEstimate& m) {
 
 std::string describe_estimate(const MaterialEstimate& m) {
   const std::string name = estimate_name(m);
+  if (m.gloss && m.sheen)
+    return fmt::format(
+        "{:<16} glossy: roughness {:.2f}, specular {:.2f} (a broad sheen, {:.1f} standard errors clear of "
+        "none; {} pixels)",
+        name, m.gloss->roughness, m.gloss->specular, m.significance.value_or(0.0f), m.pixels);
   if (m.gloss)
     return fmt::format(
         "{:<16} glossy: roughness {:.2f}, specular {:.2f} (its highlights explain {:.0f} % of its shading's fine "
@@ -218,35 +386,75 @@ void require_named_objects(const Scene& scene) {
                      "objects: an OBJ's `o` lines, a glTF's nodes)");
 }
 
-HighlightFit fit_highlight(const std::vector<float>& dx, const std::vector<float>& dy, float max_scale) {
+namespace {
+
+// Huber's weight of each pair at the slope k.
+std::vector<float> huber_weights(const std::vector<float>& dx, const std::vector<float>& dy, double k) {
+  std::vector<float> e(dx.size());
+  for (size_t i = 0; i < e.size(); ++i) e[i] = dy[i] - float(k) * dx[i];
+  const float threshold = kHuber * std::max(robust_sigma(e), 1e-12f);
+  for (float& x : e) x = std::min(1.0f, threshold / std::max(std::abs(x), 1e-30f));
+  return e;
+}
+
+// The Huber-robust slope through the origin of dy against dx (iteratively
+// reweighted least squares: the pairs across the object's texture, and the
+// photo's noise, are the outliers of a highlight's shape); none where dx is 0.
+std::optional<double> robust_slope(const std::vector<float>& dx, const std::vector<float>& dy) {
   double xx = 0.0, xy = 0.0;
   for (size_t i = 0; i < dx.size(); ++i) xx += double(dx[i]) * dx[i], xy += double(dx[i]) * dy[i];
-  if (xx <= 0.0) return {};
-  // Iteratively reweighted least squares: the pairs across the object's
-  // texture (and the photo's noise) are the outliers of a highlight's shape.
+  if (xx <= 0.0) return std::nullopt;
   double k = xy / xx;
-  std::vector<float> e(dx.size());
   for (int iteration = 0; iteration < 30; ++iteration) {
-    for (size_t i = 0; i < e.size(); ++i) e[i] = dy[i] - float(k) * dx[i];
-    const float threshold = kHuber * std::max(robust_sigma(e), 1e-12f);
+    const std::vector<float> weight = huber_weights(dx, dy, k);
     double wxx = 0.0, wxy = 0.0;
-    for (size_t i = 0; i < e.size(); ++i) {
-      const double weight = std::min(1.0, threshold / std::max(std::abs(double(e[i])), 1e-30));
-      wxx += weight * dx[i] * dx[i], wxy += weight * dx[i] * dy[i];
-    }
+    for (size_t i = 0; i < dx.size(); ++i) wxx += weight[i] * dx[i] * dx[i], wxy += weight[i] * dx[i] * dy[i];
     const double next = wxy / wxx;
     const bool settled = std::abs(next - k) <= 1e-5 * std::max(1.0, std::abs(k));
     k = next;
     if (settled) break;
   }
+  return k;
+}
+
+}  // namespace
+
+HighlightFit fit_highlight(const std::vector<float>& dx, const std::vector<float>& dy, float max_scale) {
+  const std::optional<double> slope = robust_slope(dx, dy);
+  if (!slope) return {};
   // A highlight a few pixels of noise predict fits any scale: none beyond
   // what the surface could reflect.
-  k = std::clamp(k, 0.0, double(max_scale));
+  const double k = std::clamp(*slope, 0.0, double(max_scale));
+  std::vector<float> e(dx.size());
   for (size_t i = 0; i < e.size(); ++i) e[i] = dy[i] - float(k) * dx[i];
   const float threshold = kHuber * std::max(robust_sigma(dy), 1e-12f);
   const double before = huber_loss(dy, threshold);
   if (before <= 0.0) return {float(k), 0.0f};
   return {float(k), float(1.0 - huber_loss(e, threshold) / before)};
+}
+
+float jackknife_significance(const std::vector<float>& dx, const std::vector<float>& dy,
+                             const std::vector<uint32_t>& block) {
+  const std::optional<double> slope = robust_slope(dx, dy);
+  if (!slope) return 0.0f;
+  const std::set<uint32_t> blocks(block.begin(), block.end());
+  if (blocks.size() < kMinBlocks) return 0.0f;
+  // The slope fitted again without each block in turn.
+  std::vector<double> without;
+  std::vector<float> x, y;
+  for (const uint32_t left_out : blocks) {
+    x.clear(), y.clear();
+    for (size_t i = 0; i < dx.size(); ++i)
+      if (block[i] != left_out) x.push_back(dx[i]), y.push_back(dy[i]);
+    if (const std::optional<double> k = robust_slope(x, y)) without.push_back(*k);
+  }
+  if (without.size() < kMinBlocks) return 0.0f;
+  double mean = 0.0, spread = 0.0;
+  for (const double k : without) mean += k;
+  mean /= double(without.size());
+  for (const double k : without) spread += (k - mean) * (k - mean);
+  const double n = double(without.size()), error = std::sqrt((n - 1.0) / n * spread);
+  return error > 0.0 ? float(*slope / error) : 0.0f;
 }
 
 std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
@@ -264,7 +472,7 @@ std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RaySc
   std::vector<EstimationUnit> units;
   std::vector<std::string> candidates;
   for (EstimationUnit& unit : estimation_units(scene.mesh)) {
-    MaterialEstimate m{unit.name, {}, 0, std::nullopt, 0.0f, ""};
+    MaterialEstimate m{unit.name, {}, 0, std::nullopt, 0.0f, std::nullopt, false, ""};
     for (const uint32_t o : unit.objects) m.objects.push_back(scene.mesh.objects[o]), m.pixels += pixels[o];
     if (m.pixels < options.min_pixels) continue;
     candidates.insert(candidates.end(), m.objects.begin(), m.objects.end());
@@ -316,6 +524,7 @@ std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RaySc
     else
       m.gloss = Gloss{best_roughness[k], specular};
   }
+  find_broad_sheens(scene, rays, gbuffer, analysis, lighting, photo, view, units, estimates, options, progress);
   return estimates;
 }
 

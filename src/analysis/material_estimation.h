@@ -8,8 +8,12 @@
 // of photo / illumination across the object (its gradients over 1, 2 and 4
 // pixels, a robust fit) is kept, scaled to the photo up to the most a
 // dielectric reflects (specular 1: a metal's or a tinted coat's highlights
-// are not modelled). It refuses to guess — the object stays matte — where
-// no predicted highlight explains at least kMinExplained of that variation.
+// are not modelled). A coloured object none explains is tried for a broad
+// sheen: its untinted change over a tenth of the view, in the colours its
+// albedo does not have (the light's own errors scale the albedo's colour).
+// It refuses to guess — the object stays matte — where no predicted
+// highlight explains at least kMinExplained of the fine variation and no
+// sheen stands kMinSignificance standard errors clear of none.
 #pragma once
 
 #include <map>
@@ -32,6 +36,21 @@ namespace relight {
 // well under 1 % (docs/benchmarks.md, "Materials from the photo").
 inline constexpr float kMinExplained = 0.1f;
 
+// A broad sheen is looked for on objects whose shading (photo /
+// illumination) is at least this coloured (1 - its least channel over its
+// greatest): on a grey one it has the colour of the light and cannot be
+// told from the light's own errors.
+inline constexpr float kMinChroma = 0.3f;
+
+// How many standard errors (a jackknife over blocks of the view, a tenth of
+// its width across) a broad sheen's strength must stand clear of none, and
+// the fewest blocks the object must reach into for that error to be told:
+// matte objects measured over ten blocks or more stand at most 3.6 (one at
+// 5.1, its sheen too faint to keep), over four up to 10; broad sheens found
+// 5.6 to 17 (docs/benchmarks.md, "Materials from the photo").
+inline constexpr float kMinSignificance = 4.5f;
+inline constexpr size_t kMinBlocks = 10;
+
 // The roughnesses tried (Principled's, alpha = roughness squared).
 inline constexpr float kRoughnessGrid[] = {0.05f, 0.1f, 0.15f, 0.2f, 0.3f, 0.4f, 0.55f, 0.7f};
 
@@ -43,6 +62,9 @@ struct MaterialEstimate {
   size_t pixels = 0;           // the pixels that show it whole
   std::optional<Gloss> gloss;  // found; none: left matte (`reason` says why)
   float explained = 0.0f;      // the share of its fine variation the best highlight explains
+  // Where tried for a broad sheen: its best strength over its standard error.
+  std::optional<float> significance;
+  bool sheen = false;  // found as a broad sheen rather than by its highlights' fine shape
   std::string reason;
 };
 
@@ -93,5 +115,13 @@ struct HighlightFit {
   float explained = 0.0f;
 };
 HighlightFit fit_highlight(const std::vector<float>& dx, const std::vector<float>& dy, float max_scale);
+
+// How many standard errors fit_highlight's slope (before it is held to a
+// range) stands from 0: the delete-one-block jackknife of the slope, fitted
+// again without each block in turn (`block`: each pair's block of the view,
+// so that pairs near each other, whose errors go together, leave together).
+// 0 where fewer than kMinBlocks blocks hold pairs. Exposed for the tests.
+float jackknife_significance(const std::vector<float>& dx, const std::vector<float>& dy,
+                             const std::vector<uint32_t>& block);
 
 }  // namespace relight

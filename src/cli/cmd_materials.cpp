@@ -70,9 +70,11 @@ void add_materials_command(CLI::App& app, Action& action) {
       "Analyses the scene with its surfaces matte (those `materials` names keep theirs), then predicts the\n"
       "  highlights its lights and environment would make on each object at roughnesses 0.05-0.7 and keeps the\n"
       "  one whose shape the photo shows, scaled to it. An object stays matte where no highlight explains 10 % of\n"
-      "  its shading's fine variation, or where its highlights are brighter than a dielectric's (a metal). Objects\n"
-      "  made wholly of a material no other surface has are estimated together, under the material's name. Writes\n"
-      "  a complete scene.json; analyse that one. docs/algorithms.md section 13.",
+      "  its shading's fine variation, or where its highlights are brighter than a dielectric's (a metal). A\n"
+      "  coloured object none explains is tried for a broad sheen (its untinted change over a tenth of the view),\n"
+      "  kept where it stands 4.5 standard errors clear of none. Objects made wholly of a material no other\n"
+      "  surface has are estimated together, under the material's name. Writes a complete scene.json; analyse\n"
+      "  that one. docs/algorithms.md section 13.",
       {{"relight materials scene.json -o scene_materials.json && relight analyze scene_materials.json -o analysis",
         "find the glossy surfaces, then analyse with their highlights taken off the photo"}}));
   run_when_parsed(*cmd, action, args, run_materials);
