@@ -50,9 +50,9 @@ AnalysisOptions preview_options(AnalysisOptions full) {
   return full;
 }
 
-void reduce_for_preview(Scene& scene) {
+void reduce_photo(Scene& scene, int64_t max_pixels, const char* why) {
   const int w = scene.photo.width, h = scene.photo.height;
-  const double scale = std::sqrt(double(kPreviewPixels) / (double(w) * double(h)));
+  const double scale = std::sqrt(double(max_pixels) / (double(w) * double(h)));
   if (scale >= 1.0) return;
   const int rw = std::max(1, int(std::lround(w * scale))), rh = std::max(1, int(std::lround(h * scale)));
   scene.photo = resized(scene.photo, rw, rh);
@@ -70,7 +70,7 @@ void reduce_for_preview(Scene& scene) {
     for (Vec2& p : scene.reference->colorchecker) p = p.cwiseProduct(to_reduced);
   }
   scene.camera = Camera(scene.camera.spec(), rw, rh);
-  spdlog::info("preview: the photo reduced from {}x{} to {}x{}", w, h, rw, rh);
+  spdlog::info("{}: the photo reduced from {}x{} to {}x{}", why, w, h, rw, rh);
 }
 
 RadiosityOptions radiosity_options(const AnalysisOptions& options) {

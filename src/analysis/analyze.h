@@ -76,9 +76,10 @@ AnalysisOptions preview_options(AnalysisOptions full);
 inline constexpr int64_t kPreviewPixels = 1 << 19;
 // The scene with its photo (and what is given in its pixels: the clipped
 // mask, a grey card's polygon, a chart's corners) reduced to at most
-// kPreviewPixels, the camera bound to the smaller photo; a smaller photo is
-// left as it is.
-void reduce_for_preview(Scene& scene);
+// max_pixels, the camera bound to the smaller photo; a smaller photo is left
+// as it is. `why` names the reduction in the log.
+void reduce_photo(Scene& scene, int64_t max_pixels, const char* why);
+inline void reduce_for_preview(Scene& scene) { reduce_photo(scene, kPreviewPixels, "preview"); }
 
 // The radiosity solver's settings of an analysis.
 RadiosityOptions radiosity_options(const AnalysisOptions& options);

@@ -68,6 +68,11 @@ struct MaterialEstimate {
   std::string reason;
 };
 
+// Materials are the objects', whatever the photo's size: they are estimated
+// from the photo reduced to at most this many pixels (reduce_photo), where
+// the highlights' renders cost a fraction of a camera-sized photo's.
+inline constexpr int64_t kEstimationPixels = kPreviewPixels;
+
 struct MaterialEstimationOptions {
   int paths_per_pixel = 64;
   uint64_t seed = 1;

@@ -29,7 +29,10 @@ void run_materials(const MaterialsArgs& args, Progress& progress) {
   Scene scene = load_scene(args.scene, progress);
   log_scene(scene, args.scene);
   check_output_is_not_an_input(fs::absolute(args.out));  // before the work, not after it
+  // Written back as given: the camera and a grey card in the photo's own pixels.
   const Camera given_camera = scene.camera;
+  const std::optional<AlbedoReference> given_reference = scene.reference;
+  reduce_photo(scene, kEstimationPixels, "materials");
   LoadedScene s = prepare_for_analysis(std::move(scene), args.options, progress, CameraUse::for_analysis);
   require_named_objects(s.scene);
   warn_about_the_view(s.scene, *s.rays, *s.gbuffer);
@@ -47,6 +50,7 @@ void run_materials(const MaterialsArgs& args, Progress& progress) {
   // The scene as given, with the materials: a camera the analysis
   // registered is its own business (relight register writes one).
   s.scene.camera = given_camera;
+  s.scene.reference = given_reference;
   set_materials(s.scene, std::move(materials));
   const fs::path out = fs::absolute(args.out);
   write_text_atomically(out, scene_to_json(s.scene, out.parent_path()));

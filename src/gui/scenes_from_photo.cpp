@@ -15,14 +15,17 @@ std::vector<MaterialEstimate> write_scene_with_materials(const StudioScene& open
                                                          const fs::path& out, Progress& progress) {
   const AnalysedScene& a = *open.analysed;
   require_named_objects(a.scene());
-  // A fresh analysis, as `relight materials` makes: a cached one keeps no
-  // illumination to compare the photo with.
-  const Analysis analysis = analyze(a.scene(), a.rays(), a.gbuffer(), a.analysis().options, progress);
+  // A fresh analysis, as `relight materials` makes, of the photo reduced as
+  // it reduces it: a cached one keeps no illumination to compare the photo with.
+  Scene scene = a.scene();
+  reduce_photo(scene, kEstimationPixels, "materials");
+  const GBuffer gbuffer = scene_gbuffer(scene, a.rays(), a.analysis().options);
+  const Analysis analysis = analyze(scene, a.rays(), gbuffer, a.analysis().options, progress);
   MaterialEstimationOptions estimation;
   estimation.paths_per_pixel = a.analysis().options.paths_per_pixel;
   estimation.seed = a.analysis().options.seed;
   std::vector<MaterialEstimate> estimates =
-      estimate_materials(a.scene(), a.rays(), a.gbuffer(), analysis, estimation, progress);
+      estimate_materials(scene, a.rays(), gbuffer, analysis, estimation, progress);
   if (std::none_of(estimates.begin(), estimates.end(), [](const MaterialEstimate& m) { return bool(m.gloss); }))
     return estimates;
   Scene given = load_scene(scene_file, progress);  // its camera as given, not as an analysis registered it
