@@ -67,8 +67,7 @@ double huber_loss(const std::vector<float>& e, float threshold) {
 // its illumination.
 struct ViewPixels {
   std::vector<int32_t> object;  // per pixel: the object shown whole and unclipped, or -1
-  std::vector<Vec3> colour;     // photo / illumination
-  std::vector<float> shading;   // its channels' mean
+  std::vector<Vec3> colour;     // photo / illumination (the shading)
 };
 
 // The object every sample of pixel (x, y) sees where one does, all of it
@@ -92,7 +91,6 @@ ViewPixels view_pixels(const Scene& scene, const GBuffer& gbuffer, const Analysi
   ViewPixels v;
   v.object.assign(size_t(w) * h, -1);
   v.colour.assign(size_t(w) * h, Vec3::Zero());
-  v.shading.assign(size_t(w) * h, 0.0f);
   const Image& illumination = analysis.illumination.surface;
   std::vector<GBufferSample> samples(size_t(gbuffer.samples_per_pixel()));
   for (int y = 0; y < h; ++y)
@@ -105,7 +103,6 @@ ViewPixels view_pixels(const Scene& scene, const GBuffer& gbuffer, const Analysi
       if (e.minCoeff() <= 1e-4f * std::max(e.maxCoeff(), 1e-12f) || e.maxCoeff() <= 0.0f) continue;
       v.object[i] = int32_t(*object);
       v.colour[i] = photo.pixels[i].cwiseQuotient(e);
-      v.shading[i] = v.colour[i].mean();
     }
   return v;
 }
@@ -290,7 +287,7 @@ void find_broad_sheens(const Scene& scene, const RayScene& rays, const GBuffer& 
     else if (specular < kMinSpecular)
       m.reason += fmt::format("; its broad sheen is faint (specular {:.3f}, under {:.2f})", specular, kMinSpecular);
     else
-      m.gloss = Gloss{best_roughness[t], specular}, m.sheen = true, m.reason.clear();
+      m.gloss = Gloss{best_roughness[t], specular}, m.reason.clear();
   }
 }
 
@@ -319,7 +316,7 @@ std::string estimate_name(const MaterialEstimate& m) {
 
 std::string describe_estimate(const MaterialEstimate& m) {
   const std::string name = estimate_name(m);
-  if (m.gloss && m.sheen)
+  if (m.gloss && m.significance)
     return fmt::format(
         "{:<16} glossy: roughness {:.2f}, specular {:.2f} (a broad sheen, {:.1f} standard errors clear of "
         "none; {} pixels)",
@@ -472,7 +469,7 @@ std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RaySc
   std::vector<EstimationUnit> units;
   std::vector<std::string> candidates;
   for (EstimationUnit& unit : estimation_units(scene.mesh)) {
-    MaterialEstimate m{unit.name, {}, 0, std::nullopt, 0.0f, std::nullopt, false, ""};
+    MaterialEstimate m{unit.name, {}, 0, std::nullopt, 0.0f, std::nullopt, ""};
     for (const uint32_t o : unit.objects) m.objects.push_back(scene.mesh.objects[o]), m.pixels += pixels[o];
     if (m.pixels < options.min_pixels) continue;
     candidates.insert(candidates.end(), m.objects.begin(), m.objects.end());
@@ -488,7 +485,9 @@ std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RaySc
     return d;
   };
 
-  const std::vector<std::vector<float>> shading = pooled(differences(view, view.shading, w, h, objects));
+  std::vector<float> mean_shading(view.colour.size());
+  for (size_t i = 0; i < mean_shading.size(); ++i) mean_shading[i] = view.colour[i].mean();
+  const std::vector<std::vector<float>> shading = pooled(differences(view, mean_shading, w, h, objects));
   const Lighting lighting = strategy_lighting(scene, rays, analysis.options.strategy);
   // Per unit: the best fit so far and its roughness.
   std::vector<HighlightFit> best(estimates.size());

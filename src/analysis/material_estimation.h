@@ -62,9 +62,10 @@ struct MaterialEstimate {
   size_t pixels = 0;           // the pixels that show it whole
   std::optional<Gloss> gloss;  // found; none: left matte (`reason` says why)
   float explained = 0.0f;      // the share of its fine variation the best highlight explains
-  // Where tried for a broad sheen: its best strength over its standard error.
+  // Where tried for a broad sheen (no highlight's fine shape found it
+  // glossy): its best strength over its standard error. Glossy with it:
+  // found as a broad sheen.
   std::optional<float> significance;
-  bool sheen = false;  // found as a broad sheen rather than by its highlights' fine shape
   std::string reason;
 };
 
