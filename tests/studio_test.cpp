@@ -1485,7 +1485,7 @@ class StudioTest : public QObject {
   }
 
   // File > Find the Surfaces That Shine on the glossy studio without its
-  // materials: the ball is found, the scene with it written beside (never
+  // materials: the ball and the floor are found, the scene with them written beside (never
   // over the open one) and opened; on the matte room nothing is found and
   // nothing written.
   void finding_the_surfaces_that_shine_writes_and_opens_a_new_scene() {
@@ -1522,6 +1522,7 @@ class StudioTest : public QObject {
     keep_picture("materials_opened", *window_);
     const nlohmann::json written = nlohmann::json::parse(std::ifstream(out));
     QVERIFY(written["materials"].contains("ball"));
+    QVERIFY(written["materials"].contains("floor"));
     QVERIFY(!written["materials"].contains("back_wall"));
     QCOMPARE(file_text(copy / "scene.json"), original);
     QVERIFY(!document().studio_scene().analysed->scene().gloss.all_matte());

@@ -277,21 +277,35 @@ class PlannedJob {
 
 }  // namespace
 
+namespace {
+
+IntegratorOptions glossy_integrator_options(const SurfaceGloss& gloss, const AnalysisOptions& options) {
+  IntegratorOptions o;
+  o.max_bounces = options.max_bounces;
+  o.gloss = &gloss;
+  return o;
+}
+
+}  // namespace
+
+PhotoSpecular::PhotoSpecular(const RayScene& rays, const Lighting& lighting, const SurfaceGloss& gloss,
+                             const PhotoRadiance* photo_radiance, const AnalysisOptions& options)
+    : unseen_(AlbedoImages().mean),
+      integrator_(rays, lighting, &unseen_, glossy_integrator_options(gloss, options), photo_radiance),
+      photo_radiance_(photo_radiance),
+      surfaces_([this](const SurfacePoint& hit, Rng& rng) -> Vec3 {
+        if (photo_radiance_)
+          if (const std::optional<Vec3> shown = photo_radiance_->at(hit)) return *shown;
+        return unseen_.at(hit).cwiseProduct(integrator_.illumination(hit, rng));
+      }),
+      specular_(integrator_, gloss, surfaces_) {}
+
 Image photo_highlights(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Lighting& lighting,
                        const SurfaceGloss& gloss, const PhotoRadiance* photo_radiance, const AnalysisOptions& options,
                        Progress& progress, const std::string& label) {
-  const UniformAlbedo unseen(AlbedoImages().mean);
-  IntegratorOptions integrator_options;
-  integrator_options.max_bounces = options.max_bounces;
-  integrator_options.gloss = &gloss;
-  const Integrator integrator(rays, lighting, &unseen, integrator_options, photo_radiance);
-  const ReflectedRadiance surfaces = [&](const SurfacePoint& hit, Rng& rng) -> Vec3 {
-    if (photo_radiance)
-      if (const std::optional<Vec3> shown = photo_radiance->at(hit)) return *shown;
-    return unseen.at(hit).cwiseProduct(integrator.illumination(hit, rng));
-  };
-  const SpecularReflection specular(integrator, gloss, surfaces);
-  return render_specular(gbuffer, scene.camera, specular, options.paths_per_pixel, options.seed, progress, label);
+  const PhotoSpecular specular(rays, lighting, gloss, photo_radiance, options);
+  return render_specular(gbuffer, scene.camera, specular.reflection(), options.paths_per_pixel, options.seed, progress,
+                         label);
 }
 
 namespace {

@@ -20,6 +20,7 @@
 #include "core/progress.h"
 #include "render/gbuffer.h"
 #include "render/radiosity.h"
+#include "render/specular.h"
 #include "scene/scene.h"
 
 namespace relight {
@@ -125,7 +126,25 @@ class PhotoRadiance;
 // photo was taken: a reflected ray that meets a surface the photo (or a
 // probe) shows takes the radiance shown there (`photo_radiance`, where
 // given), elsewhere a path's light off the mid grey surfaces unseen take
-// before any albedo is known. `options`: its paths, seed and bounces.
+// before any albedo is known. `options`: its bounces. Holds references to
+// all but `options`.
+class PhotoSpecular {
+ public:
+  PhotoSpecular(const RayScene& rays, const Lighting& lighting, const SurfaceGloss& gloss,
+                const PhotoRadiance* photo_radiance, const AnalysisOptions& options);
+  PhotoSpecular(const PhotoSpecular&) = delete;
+  PhotoSpecular& operator=(const PhotoSpecular&) = delete;
+  const SpecularReflection& reflection() const { return specular_; }
+
+ private:
+  UniformAlbedo unseen_;
+  Integrator integrator_;
+  const PhotoRadiance* photo_radiance_;
+  ReflectedRadiance surfaces_;
+  SpecularReflection specular_;
+};
+
+// PhotoSpecular's highlights in every pixel, at the options' paths and seed.
 Image photo_highlights(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Lighting& lighting,
                        const SurfaceGloss& gloss, const PhotoRadiance* photo_radiance, const AnalysisOptions& options,
                        Progress& progress, const std::string& label = "highlights");

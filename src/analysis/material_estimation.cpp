@@ -1,6 +1,7 @@
 #include "analysis/material_estimation.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -280,14 +281,147 @@ void find_broad_sheens(const Scene& scene, const RayScene& rays, const GBuffer& 
   for (size_t t = 0; t < tried.size(); ++t) {
     MaterialEstimate& m = estimates[tried[t]];
     const float specular = kDefaultSpecular * best[t].fit.scale;
-    m.significance = jackknife_significance(best[t].dx, best[t].dy, best[t].block);
-    if (*m.significance < kMinSignificance)
+    m.colour_significance = jackknife_significance(best[t].dx, best[t].dy, best[t].block);
+    if (*m.colour_significance < kMinSignificance)
       m.reason += fmt::format("; a broad sheen stands {:.1f} standard errors clear of none ({:.1f} needed)",
-                              *m.significance, kMinSignificance);
+                              *m.colour_significance, kMinSignificance);
     else if (specular < kMinSpecular)
       m.reason += fmt::format("; its broad sheen is faint (specular {:.3f}, under {:.2f})", specular, kMinSpecular);
     else
-      m.gloss = Gloss{best_roughness[t], specular}, m.reason.clear();
+      m.gloss = Gloss{best_roughness[t], specular}, m.cue = GlossCue::colour, m.reason.clear();
+  }
+}
+
+// A point of a unit left matte that the photo and a probe both show, and
+// how their radiances differ: (photo - probe) over their mean, in luminance.
+struct SeenTwice {
+  SurfacePoint point;
+  Vec3 probe_position;
+  uint32_t block;  // the photo pixel's jackknife block
+  float change, mean;
+};
+
+// Per unit: its points seen twice, from each probe that shows the scene as
+// the photo does (probe_exposure.h), on pixels that show the unit whole.
+std::vector<std::vector<SeenTwice>> points_seen_twice(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
+                                                      const Image& photo, const ViewPixels& view,
+                                                      const std::vector<int32_t>& unit_of, size_t units) {
+  const int w = gbuffer.width();
+  const int block = std::max(1, w / kBlocksPerWidth), blocks_across = (w + block - 1) / block;
+  std::vector<std::vector<SeenTwice>> seen(units);
+  for (const Probe& probe : scene.probes) {
+    const std::vector<SharedPoint> shared = points_shared_with_photo(probe, scene, rays, gbuffer);
+    if (!photo_exposure_from(shared, scene.photo, probe.path)) continue;
+    for (const SharedPoint& s : shared) {
+      const uint32_t o = scene.mesh.triangle_objects[s.point.prim];
+      if (unit_of[o] < 0 || view.object[s.pixel] != int32_t(o)) continue;
+      const float p = luminance(photo.pixels[s.pixel]), q = luminance(s.probe), mean = 0.5f * (p + q);
+      if (!(mean > 0.0f)) continue;
+      const int x = int(s.pixel % size_t(w)), y = int(s.pixel / size_t(w));
+      seen[size_t(unit_of[o])].push_back(
+          {s.point, probe.position, uint32_t((y / block) * blocks_across + x / block), (p - q) / mean, mean});
+    }
+  }
+  return seen;
+}
+
+// The change of each point's highlight from its probe's view to the
+// camera's, over its mean radiance (as SeenTwice::change): `paths` of
+// `specular`'s estimates each way.
+std::vector<float> predicted_changes(const std::vector<SeenTwice>& points, const SpecularReflection& specular,
+                                     const Vec3& camera, int paths, uint64_t seed) {
+  std::vector<float> change(points.size());
+  tbb::parallel_for(size_t(0), points.size(), [&](size_t n) {
+    Rng rng(seed ^ 0x7477696365ull, n);
+    Vec3 sum = Vec3::Zero();
+    for (int i = 0; i < paths; ++i)
+      sum += specular.radiance(points[n].point, camera, rng) -
+             specular.radiance(points[n].point, points[n].probe_position, rng);
+    change[n] = luminance(sum) / float(paths) / points[n].mean;
+  });
+  return change;
+}
+
+// The units of `estimates` still matte, tried for a sheen seen from two
+// places: where a probe and the camera see the same points of a unit, the
+// change of its radiance between the two views against that of its
+// highlight at each broad roughness (about their medians: an exposure
+// error between photo and probe changes every point alike), the best kept
+// where it stands clear of none and explains enough of the change.
+void find_sheens_seen_twice(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Analysis& analysis,
+                            const Lighting& lighting, const Image& photo, const ViewPixels& view,
+                            const std::vector<EstimationUnit>& units, std::vector<MaterialEstimate>& estimates,
+                            const MaterialEstimationOptions& options, Progress& progress) {
+  std::vector<int32_t> unit_of(scene.mesh.objects.size(), -1);
+  std::vector<std::string> candidates;
+  for (size_t k = 0; k < units.size(); ++k)
+    if (!estimates[k].gloss) {
+      for (const uint32_t o : units[k].objects) unit_of[o] = int32_t(k);
+      candidates.insert(candidates.end(), estimates[k].objects.begin(), estimates[k].objects.end());
+    }
+  if (candidates.empty()) return;
+  std::vector<std::vector<SeenTwice>> seen =
+      points_seen_twice(scene, rays, gbuffer, photo, view, unit_of, units.size());
+  std::vector<size_t> tried;
+  for (size_t k = 0; k < units.size(); ++k) {
+    if (estimates[k].gloss) continue;
+    std::set<uint32_t> blocks;
+    for (const SeenTwice& p : seen[k]) blocks.insert(p.block);
+    if (blocks.size() >= kMinBlocks)
+      tried.push_back(k);
+    else if (!scene.probes.empty())
+      estimates[k].reason += "; too little of it seen by a probe as by the camera to compare their views";
+  }
+  if (tried.empty()) return;
+  std::unique_ptr<PhotoRadiance> shown;
+  if (analysis.options.bounce_source == BounceSource::photo)
+    shown = std::make_unique<PhotoRadiance>(scene.camera, gbuffer, photo, scene.probes, rays, scene.lights);
+  std::vector<BroadFit> best(units.size());
+  std::vector<float> best_roughness(units.size(), 0.0f);
+  for (const float roughness : kRoughnessGrid) {
+    if (roughness < kMinTwoViewsRoughness) continue;
+    std::map<std::string, Gloss> materials;
+    for (const std::string& name : candidates) materials[name] = Gloss{roughness, kDefaultSpecular};
+    const SurfaceGloss gloss(materials, scene.mesh);
+    const PhotoSpecular specular(rays, lighting, gloss, shown.get(), analysis.options);
+    progress.begin(fmt::format("sheens seen twice at roughness {:.2f}", roughness), int64_t(tried.size()));
+    for (const size_t k : tried) {
+      const std::vector<SeenTwice>& points = seen[k];
+      const std::vector<float> predicted = predicted_changes(points, specular.reflection(), scene.camera.position(),
+                                                             options.paths_per_pixel, options.seed);
+      std::vector<float> shown_change(points.size());
+      for (size_t n = 0; n < points.size(); ++n) shown_change[n] = points[n].change;
+      const float predicted_middle = median_of(predicted), shown_middle = median_of(shown_change);
+      BroadFit f;
+      for (size_t n = 0; n < points.size(); ++n) {
+        f.dx.push_back(predicted[n] - predicted_middle);
+        f.dy.push_back(shown_change[n] - shown_middle);
+        f.block.push_back(points[n].block);
+      }
+      f.fit = fit_highlight(f.dx, f.dy, 1.0f / kDefaultSpecular);
+      const bool within = f.fit.scale > 0.0f && f.fit.scale < 1.0f / kDefaultSpecular;
+      if (within && f.fit.explained > best[k].fit.explained) best[k] = std::move(f), best_roughness[k] = roughness;
+      progress.advance();
+    }
+    progress.end();
+  }
+  for (const size_t k : tried) {
+    MaterialEstimate& m = estimates[k];
+    const float specular = kDefaultSpecular * best[k].fit.scale;
+    m.two_views_significance = jackknife_significance(best[k].dx, best[k].dy, best[k].block);
+    if (*m.two_views_significance < kMinSignificance || best[k].fit.explained < kMinExplainedTwoViews)
+      m.reason += fmt::format(
+          "; seen by a probe and the camera, a sheen stands {:.1f} standard errors clear of none ({:.1f} needed) "
+          "and explains {:.1f} % of how they differ ({:.0f} % needed)",
+          *m.two_views_significance, kMinSignificance, 100.0f * best[k].fit.explained, 100.0f * kMinExplainedTwoViews);
+    else if (specular < kMinSpecular)
+      m.reason += fmt::format("; seen by a probe and the camera, its sheen is faint (specular {:.3f})", specular);
+    else {
+      m.gloss = Gloss{best_roughness[k], specular};
+      m.cue = GlossCue::two_views;
+      m.explained = best[k].fit.explained;
+      m.reason.clear();
+    }
   }
 }
 
@@ -316,20 +450,26 @@ std::string estimate_name(const MaterialEstimate& m) {
 
 std::string describe_estimate(const MaterialEstimate& m) {
   const std::string name = estimate_name(m);
-  if (m.gloss && m.significance)
-    return fmt::format(
-        "{:<16} glossy: roughness {:.2f}, specular {:.2f} (a broad sheen, {:.1f} standard errors clear of "
-        "none; {} pixels)",
-        name, m.gloss->roughness, m.gloss->specular, m.significance.value_or(0.0f), m.pixels);
-  if (m.gloss)
-    return fmt::format(
-        "{:<16} glossy: roughness {:.2f}, specular {:.2f} (its highlights explain {:.0f} % of its shading's fine "
-        "variation; {} pixels){}",
-        name, m.gloss->roughness, m.gloss->specular, 100.0f * m.explained, m.pixels,
-        m.gloss->specular >= 1.0f
-            ? "; as bright as a dielectric's get: a metal's, brighter and tinted, are not modelled"
-            : "");
-  return fmt::format("{:<16} matte: {} ({} pixels)", name, m.reason, m.pixels);
+  if (!m.gloss) return fmt::format("{:<16} matte: {} ({} pixels)", name, m.reason, m.pixels);
+  const std::string found =
+      fmt::format("{:<16} glossy: roughness {:.2f}, specular {:.2f}", name, m.gloss->roughness, m.gloss->specular);
+  switch (m.cue) {
+    case GlossCue::colour:
+      return fmt::format("{} (a broad sheen, {:.1f} standard errors clear of none; {} pixels)", found,
+                         m.colour_significance.value_or(0.0f), m.pixels);
+    case GlossCue::two_views:
+      return fmt::format(
+          "{} (a sheen that differs between a probe's view and the camera's, {:.1f} standard errors clear of "
+          "none; it explains {:.0f} % of how they differ; {} pixels)",
+          found, m.two_views_significance.value_or(0.0f), 100.0f * m.explained, m.pixels);
+    case GlossCue::highlight:
+      break;
+  }
+  return fmt::format("{} (its highlights explain {:.0f} % of its shading's fine variation; {} pixels){}", found,
+                     100.0f * m.explained, m.pixels,
+                     m.gloss->specular >= 1.0f
+                         ? "; as bright as a dielectric's get: a metal's, brighter and tinted, are not modelled"
+                         : "");
 }
 
 std::map<std::string, Gloss> with_estimates(std::map<std::string, Gloss> given,
@@ -469,7 +609,8 @@ std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RaySc
   std::vector<EstimationUnit> units;
   std::vector<std::string> candidates;
   for (EstimationUnit& unit : estimation_units(scene.mesh)) {
-    MaterialEstimate m{unit.name, {}, 0, std::nullopt, 0.0f, std::nullopt, ""};
+    MaterialEstimate m;
+    m.name = unit.name;
     for (const uint32_t o : unit.objects) m.objects.push_back(scene.mesh.objects[o]), m.pixels += pixels[o];
     if (m.pixels < options.min_pixels) continue;
     candidates.insert(candidates.end(), m.objects.begin(), m.objects.end());
@@ -521,9 +662,10 @@ std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RaySc
     else if (specular < kMinSpecular)
       m.reason = fmt::format("its highlights are faint (specular {:.3f}, under {:.2f})", specular, kMinSpecular);
     else
-      m.gloss = Gloss{best_roughness[k], specular};
+      m.gloss = Gloss{best_roughness[k], specular}, m.cue = GlossCue::highlight;
   }
   find_broad_sheens(scene, rays, gbuffer, analysis, lighting, photo, view, units, estimates, options, progress);
+  find_sheens_seen_twice(scene, rays, gbuffer, analysis, lighting, photo, view, units, estimates, options, progress);
   return estimates;
 }
 

@@ -11,6 +11,9 @@
 // are not modelled). A coloured object none explains is tried for a broad
 // sheen: its untinted change over a tenth of the view, in the colours its
 // albedo does not have (the light's own errors scale the albedo's colour).
+// An object still matte that a probe sees too is tried by the two views: a
+// matte point sends the probe and the camera the same radiance, a shining
+// one differs by the change of its highlight between them.
 // It refuses to guess — the object stays matte — where no predicted
 // highlight explains at least kMinExplained of the fine variation and no
 // sheen stands kMinSignificance standard errors clear of none.
@@ -51,8 +54,22 @@ inline constexpr float kMinChroma = 0.3f;
 inline constexpr float kMinSignificance = 4.5f;
 inline constexpr size_t kMinBlocks = 10;
 
+// A sheen told by two views (a probe's and the camera's) is of a lobe this
+// rough or rougher: a sharper one's highlight has a fine shape, and an
+// object left matte by that shows none. It must explain at least this share
+// of how the views differ, and stand kMinSignificance clear of none: matte
+// objects that stand two standard errors or more explain at most 1.3 %,
+// sheens found 10 to 64 % (docs/benchmarks.md, "A sheen seen twice").
+inline constexpr float kMinTwoViewsRoughness = 0.2f;
+inline constexpr float kMinExplainedTwoViews = 0.03f;
+
 // The roughnesses tried (Principled's, alpha = roughness squared).
 inline constexpr float kRoughnessGrid[] = {0.05f, 0.1f, 0.15f, 0.2f, 0.3f, 0.4f, 0.55f, 0.7f};
+
+// What found a surface glossy: its highlights' fine shape, a broad sheen's
+// untinted change across the view, or the change of its radiance between a
+// probe's view and the camera's.
+enum class GlossCue { highlight, colour, two_views };
 
 // One estimate: of an object, or of a material several objects share whole
 // (their pixels taken together; `materials` then names the material).
@@ -60,12 +77,14 @@ struct MaterialEstimate {
   std::string name;                  // the object's or the material's
   std::vector<std::string> objects;  // the objects it covers
   size_t pixels = 0;           // the pixels that show it whole
-  std::optional<Gloss> gloss;  // found; none: left matte (`reason` says why)
-  float explained = 0.0f;      // the share of its fine variation the best highlight explains
-  // Where tried for a broad sheen (no highlight's fine shape found it
-  // glossy): its best strength over its standard error. Glossy with it:
-  // found as a broad sheen.
-  std::optional<float> significance;
+  std::optional<Gloss> gloss;  // found (by `cue`); none: left matte (`reason` says why)
+  GlossCue cue = GlossCue::highlight;
+  // The share of what the cue looks at that the best highlight explains:
+  // its shading's fine variation, or how the two views differ.
+  float explained = 0.0f;
+  // Where tried for a broad sheen by its colour, or by two views: its best
+  // strength over its standard error.
+  std::optional<float> colour_significance, two_views_significance;
   std::string reason;
 };
 

@@ -59,30 +59,34 @@ std::optional<size_t> photo_pixel_showing(const Scene& scene, const GBuffer& gbu
 
 }  // namespace
 
-std::optional<ProbeExposure> photo_exposure_against_probe(const Probe& probe, const Scene& scene,
-                                                          const RayScene& rays, const GBuffer& gbuffer) {
+std::vector<SharedPoint> points_shared_with_photo(const Probe& probe, const Scene& scene, const RayScene& rays,
+                                                  const GBuffer& gbuffer) {
   const ProbeFrame frame(probe.forward, probe.up);
-  std::array<std::vector<double>, 3> log_ratio;
-  std::vector<double> log_luminance_ratio, log_photo;
-  // A median needs no more than a few hundred thousand points: a large probe
-  // is read every stride-th pixel each way (9 rays a pixel, once per
-  // analysis and per fit).
-  constexpr double kMaxProbeSamples = 262144.0;
-  const int stride = std::max(1, int(std::ceil(std::sqrt(double(probe.image.size()) / kMaxProbeSamples))));
+  const int stride = std::max(1, int(std::ceil(std::sqrt(double(probe.image.size()) / kMaxSharedProbePixels))));
+  std::vector<SharedPoint> shared;
   for (int y = 0; y < probe.image.height; y += stride)
     for (int x = 0; x < probe.image.width; x += stride) {
       const Vec3& shown = probe.image.at(x, y);
       if (shown.minCoeff() <= 0.0f) continue;
       const auto point = surface_seen_cleanly(probe, frame, rays, x, y);
       if (!point) continue;
-      const auto pixel = photo_pixel_showing(scene, gbuffer, probe.position, *point);
-      if (!pixel) continue;
-      const Vec3& photo = scene.photo.pixels[*pixel];
-      if (photo.minCoeff() <= 0.0f) continue;
-      for (int c = 0; c < 3; ++c) log_ratio[c].push_back(std::log(double(photo[c]) / double(shown[c])));
-      log_luminance_ratio.push_back(std::log(double(luminance(photo)) / double(luminance(shown))));
-      log_photo.push_back(std::log(double(luminance(photo))));
+      if (const auto pixel = photo_pixel_showing(scene, gbuffer, probe.position, *point))
+        shared.push_back({*point, *pixel, shown});
     }
+  return shared;
+}
+
+std::optional<ProbeExposure> photo_exposure_from(const std::vector<SharedPoint>& shared, const Image& photo_image,
+                                                 const std::string& probe_name) {
+  std::array<std::vector<double>, 3> log_ratio;
+  std::vector<double> log_luminance_ratio, log_photo;
+  for (const SharedPoint& s : shared) {
+    const Vec3& photo = photo_image.pixels[s.pixel];
+    if (photo.minCoeff() <= 0.0f) continue;
+    for (int c = 0; c < 3; ++c) log_ratio[c].push_back(std::log(double(photo[c]) / double(s.probe[c])));
+    log_luminance_ratio.push_back(std::log(double(luminance(photo)) / double(luminance(s.probe))));
+    log_photo.push_back(std::log(double(luminance(photo))));
+  }
   if (log_luminance_ratio.size() < kMinExposurePoints) return std::nullopt;
   ProbeExposure exposure;
   exposure.points = log_luminance_ratio.size();
@@ -94,12 +98,18 @@ std::optional<ProbeExposure> photo_exposure_against_probe(const Probe& probe, co
   for (double& l : log_photo) l = std::abs(l - photo_middle);
   exposure.photo_spread = float(1.4826 * percentile(log_photo, 0.5));
   if (!(exposure.spread < kMaxUnexplainedSpread * exposure.photo_spread)) {
-    spdlog::info("{}: over the {} surface points it shares with the photo, photo / probe varies by {:.3f} against "
-                 "the photo's {:.3f}: it does not show them as the photo does",
-                 probe.path, exposure.points, exposure.spread, exposure.photo_spread);
+    spdlog::info(
+        "{}: over the {} surface points it shares with the photo, photo / probe varies by {:.3f} against "
+        "the photo's {:.3f}: it does not show them as the photo does",
+        probe_name, exposure.points, exposure.spread, exposure.photo_spread);
     return std::nullopt;
   }
   return exposure;
+}
+
+std::optional<ProbeExposure> photo_exposure_against_probe(const Probe& probe, const Scene& scene, const RayScene& rays,
+                                                          const GBuffer& gbuffer) {
+  return photo_exposure_from(points_shared_with_photo(probe, scene, rays, gbuffer), scene.photo, probe.path);
 }
 
 }  // namespace relight

@@ -11,6 +11,8 @@
 
 #include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "render/gbuffer.h"
 #include "render/ray_scene.h"
@@ -52,6 +54,27 @@ constexpr size_t kMinExposurePoints = 100;
 // from it. The reference scenes' probes leave 0.28 of the photo's spread
 // (outdoor, the least varied) or under 0.05; an HDRI, all of it.
 constexpr float kMaxUnexplainedSpread = 0.5f;
+
+// A surface point a probe and the photo both show cleanly: the probe pixel's
+// whole square on one flat piece of one surface, seen by the camera from the
+// same side at `pixel`, fully covered and not clipped there.
+struct SharedPoint {
+  SurfacePoint point;
+  size_t pixel;  // the photo's (gbuffer's) pixel that shows it
+  Vec3 probe;    // the probe pixel's radiance, positive
+};
+
+// The points `probe` shares with the photo, read every so many probe pixels
+// each way that at most about kMaxSharedProbePixels are tried (9 rays each:
+// a median or a fit needs no more than a few hundred thousand).
+constexpr double kMaxSharedProbePixels = 262144.0;
+std::vector<SharedPoint> points_shared_with_photo(const Probe& probe, const Scene& scene, const RayScene& rays,
+                                                  const GBuffer& gbuffer);
+
+// The exposure of `photo` against the probe named `probe_name` over the
+// points they share (as below).
+std::optional<ProbeExposure> photo_exposure_from(const std::vector<SharedPoint>& shared, const Image& photo,
+                                                 const std::string& probe_name);
 
 // Nothing where the probe and the photo share fewer than kMinExposurePoints
 // surface points, or the probe does not show them as the photo does
