@@ -342,20 +342,25 @@ std::vector<float> predicted_changes(const std::vector<SeenTwice>& points, const
   return change;
 }
 
-// The units of `estimates` still matte, tried for a sheen seen from two
-// places: where a probe and the camera see the same points of a unit, the
-// change of its radiance between the two views against that of its
-// highlight at each broad roughness (about their medians: an exposure
-// error between photo and probe changes every point alike), the best kept
-// where it stands clear of none and explains enough of the change.
+// The units of `estimates` still matte or found by their colour, tried for
+// a sheen seen from two places: where a probe and the camera see the same
+// points of a unit, the change of its radiance between the two views
+// against that of its highlight at each broad roughness (about their
+// medians: an exposure error between photo and probe changes every point
+// alike), the best kept where it stands clear of none and explains enough
+// of the change. It replaces a sheen found by its colour: it compares
+// radiances, where the colour's test divides by the simulated light (a
+// room's wall at 0.5 / 0.5: 0.55 / 0.77 by two views, 0.40 / 0.22 by its
+// colour; docs/benchmarks.md, "A sheen seen twice").
 void find_sheens_seen_twice(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Analysis& analysis,
                             const Lighting& lighting, const Image& photo, const ViewPixels& view,
                             const std::vector<EstimationUnit>& units, std::vector<MaterialEstimate>& estimates,
                             const MaterialEstimationOptions& options, Progress& progress) {
+  const auto open = [&](size_t k) { return !estimates[k].gloss || estimates[k].cue == GlossCue::colour; };
   std::vector<int32_t> unit_of(scene.mesh.objects.size(), -1);
   std::vector<std::string> candidates;
   for (size_t k = 0; k < units.size(); ++k)
-    if (!estimates[k].gloss) {
+    if (open(k)) {
       for (const uint32_t o : units[k].objects) unit_of[o] = int32_t(k);
       candidates.insert(candidates.end(), estimates[k].objects.begin(), estimates[k].objects.end());
     }
@@ -364,12 +369,12 @@ void find_sheens_seen_twice(const Scene& scene, const RayScene& rays, const GBuf
       points_seen_twice(scene, rays, gbuffer, photo, view, unit_of, units.size());
   std::vector<size_t> tried;
   for (size_t k = 0; k < units.size(); ++k) {
-    if (estimates[k].gloss) continue;
+    if (!open(k)) continue;
     std::set<uint32_t> blocks;
     for (const SeenTwice& p : seen[k]) blocks.insert(p.block);
     if (blocks.size() >= kMinBlocks)
       tried.push_back(k);
-    else if (!scene.probes.empty())
+    else if (!scene.probes.empty() && !estimates[k].gloss)
       estimates[k].reason += "; too little of it seen by a probe as by the camera to compare their views";
   }
   if (tried.empty()) return;
@@ -409,18 +414,21 @@ void find_sheens_seen_twice(const Scene& scene, const RayScene& rays, const GBuf
     MaterialEstimate& m = estimates[k];
     const float specular = kDefaultSpecular * best[k].fit.scale;
     m.two_views_significance = jackknife_significance(best[k].dx, best[k].dy, best[k].block);
-    if (*m.two_views_significance < kMinSignificance || best[k].fit.explained < kMinExplainedTwoViews)
-      m.reason += fmt::format(
-          "; seen by a probe and the camera, a sheen stands {:.1f} standard errors clear of none ({:.1f} needed) "
-          "and explains {:.1f} % of how they differ ({:.0f} % needed)",
-          *m.two_views_significance, kMinSignificance, 100.0f * best[k].fit.explained, 100.0f * kMinExplainedTwoViews);
-    else if (specular < kMinSpecular)
-      m.reason += fmt::format("; seen by a probe and the camera, its sheen is faint (specular {:.3f})", specular);
-    else {
+    const bool clear = *m.two_views_significance >= kMinSignificance && best[k].fit.explained >= kMinExplainedTwoViews;
+    if (clear && specular >= kMinSpecular) {
       m.gloss = Gloss{best_roughness[k], specular};
       m.cue = GlossCue::two_views;
       m.explained = best[k].fit.explained;
       m.reason.clear();
+    } else if (m.gloss) {
+      continue;  // found by its colour, and kept so
+    } else if (clear) {
+      m.reason += fmt::format("; seen by a probe and the camera, its sheen is faint (specular {:.3f})", specular);
+    } else {
+      m.reason += fmt::format(
+          "; seen by a probe and the camera, a sheen stands {:.1f} standard errors clear of none ({:.1f} needed) "
+          "and explains {:.1f} % of how they differ ({:.0f} % needed)",
+          *m.two_views_significance, kMinSignificance, 100.0f * best[k].fit.explained, 100.0f * kMinExplainedTwoViews);
     }
   }
 }

@@ -11,7 +11,8 @@
 // are not modelled). A coloured object none explains is tried for a broad
 // sheen: its untinted change over a tenth of the view, in the colours its
 // albedo does not have (the light's own errors scale the albedo's colour).
-// An object still matte that a probe sees too is tried by the two views: a
+// An object still matte, or found by its colour, that a probe sees too is
+// tried by the two views (and where they find a sheen, theirs is kept): a
 // matte point sends the probe and the camera the same radiance, a shining
 // one differs by the change of its highlight between them.
 // It refuses to guess — the object stays matte — where no predicted
