@@ -292,8 +292,9 @@ void find_broad_sheens(const Scene& scene, const RayScene& rays, const GBuffer& 
   }
 }
 
-// A point of a unit left matte that the photo and a probe both show, and
-// how their radiances differ: (photo - probe) over their mean, in luminance.
+// A point of an object tried by two views that the photo and a probe both
+// show, and how their radiances differ: (photo - probe) over their mean, in
+// luminance.
 struct SeenTwice {
   SurfacePoint point;
   Vec3 probe_position;

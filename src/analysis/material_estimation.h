@@ -80,8 +80,8 @@ struct MaterialEstimate {
   size_t pixels = 0;           // the pixels that show it whole
   std::optional<Gloss> gloss;  // found (by `cue`); none: left matte (`reason` says why)
   GlossCue cue = GlossCue::highlight;
-  // The share of what the cue looks at that the best highlight explains:
-  // its shading's fine variation, or how the two views differ.
+  // The share the best highlight explains of its shading's fine variation,
+  // or, found by two views, of how they differ.
   float explained = 0.0f;
   // Where tried for a broad sheen by its colour, or by two views: its best
   // strength over its standard error.
