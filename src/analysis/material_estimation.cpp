@@ -40,6 +40,9 @@ constexpr int kBlocksPerWidth = 10;
 // About the most pixels a broad fit takes as the first of its pairs (a
 // larger view is sampled on a grid).
 constexpr double kBroadPixels = 5e5;
+// The most points of an object its two views are compared at, each costing
+// the highlight's estimates both ways at every roughness.
+constexpr size_t kMaxPointsSeenTwice = 16384;
 
 float median_of(std::vector<float> v) {
   if (v.empty()) return 0.0f;
@@ -323,6 +326,14 @@ std::vector<std::vector<SeenTwice>> points_seen_twice(const Scene& scene, const 
           {s.point, probe.position, uint32_t((y / block) * blocks_across + x / block), (p - q) / mean, mean});
     }
   }
+  // Every so many of an object's points where it has more than the fit
+  // needs (a large probe shares hundreds of thousands).
+  for (std::vector<SeenTwice>& points : seen)
+    if (points.size() > kMaxPointsSeenTwice) {
+      const size_t stride = (points.size() + kMaxPointsSeenTwice - 1) / kMaxPointsSeenTwice;
+      for (size_t i = 0; i * stride < points.size(); ++i) points[i] = points[i * stride];
+      points.resize((points.size() + stride - 1) / stride);
+    }
   return seen;
 }
 
