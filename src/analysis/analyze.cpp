@@ -275,10 +275,6 @@ class PlannedJob {
   Progress& progress_;
 };
 
-}  // namespace
-
-namespace {
-
 IntegratorOptions glossy_integrator_options(const SurfaceGloss& gloss, const AnalysisOptions& options) {
   IntegratorOptions o;
   o.max_bounces = options.max_bounces;

@@ -204,6 +204,13 @@ BroadFit fit_broad_sheen(const std::vector<const BroadPairs*>& pairs, const View
   return f;
 }
 
+// The objects named `glossy`, each at `roughness` and the default specular.
+std::map<std::string, Gloss> all_at(const std::vector<std::string>& glossy, float roughness) {
+  std::map<std::string, Gloss> materials;
+  for (const std::string& name : glossy) materials[name] = Gloss{roughness, kDefaultSpecular};
+  return materials;
+}
+
 // The highlights every object in `glossy` would show at `roughness`, at the
 // default specular: of the scene's lights and environment. The surfaces the
 // gloss mirrors are left out: predicted from the photo, their pattern
@@ -212,9 +219,7 @@ BroadFit fit_broad_sheen(const std::vector<const BroadPairs*>& pairs, const View
 Image predicted_highlights(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Lighting& lighting,
                            const std::vector<std::string>& glossy, float roughness,
                            const MaterialEstimationOptions& options, Progress& progress) {
-  std::map<std::string, Gloss> materials;
-  for (const std::string& name : glossy) materials[name] = Gloss{roughness, kDefaultSpecular};
-  const SurfaceGloss gloss(materials, scene.mesh);
+  const SurfaceGloss gloss(all_at(glossy, roughness), scene.mesh);
   const Integrator integrator(rays, lighting, nullptr);
   const ReflectedRadiance nothing_mirrored = [](const SurfacePoint&, Rng&) -> Vec3 { return Vec3::Zero(); };
   const SpecularReflection specular(integrator, gloss, nothing_mirrored);
@@ -222,30 +227,53 @@ Image predicted_highlights(const Scene& scene, const RayScene& rays, const GBuff
                          fmt::format("highlights at roughness {:.2f}", roughness));
 }
 
+// What the tests of a broad sheen share: the scene as analysed, the photo
+// as divided and its view, the lighting of the highlights, and the radiance
+// the photo and probes show (where the analysis's bounces take it: the
+// surfaces a sheen mirrors).
+struct SheenInputs {
+  const Scene& scene;
+  const RayScene& rays;
+  const GBuffer& gbuffer;
+  const Analysis& analysis;
+  const Lighting& lighting;
+  const Image& photo;
+  const ViewPixels& view;
+  const std::vector<EstimationUnit>& units;
+  const PhotoRadiance* shown;
+  const MaterialEstimationOptions& options;
+  Progress& progress;
+};
+
+// `fit` (at `roughness`) kept as the best where it explains more than the
+// best so far. A sheen is fainter than a dielectric's brightest: a fit held
+// at that bound is something else's shape (a checker's colours).
+void keep_if_better(BroadFit&& fit, float roughness, BroadFit& best, float& best_roughness) {
+  const bool within = fit.fit.scale > 0.0f && fit.fit.scale < 1.0f / kDefaultSpecular;
+  if (within && fit.fit.explained > best.fit.explained) best = std::move(fit), best_roughness = roughness;
+}
+
 // The units of `estimates` left matte that are coloured, tried for a broad
 // sheen: the highlights their gloss would show as the photo was taken (the
 // surfaces it mirrors as the photo shows them) at each roughness, the one
 // whose changes over broad steps, across the unit's colour, explain most
 // of its shading's, kept where its strength stands clear of none.
-void find_broad_sheens(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Analysis& analysis,
-                       const Lighting& lighting, const Image& photo, const ViewPixels& view,
-                       const std::vector<EstimationUnit>& units, std::vector<MaterialEstimate>& estimates,
-                       const MaterialEstimationOptions& options, Progress& progress) {
-  const int w = gbuffer.width(), h = gbuffer.height();
-  const std::vector<BroadPairs> pairs = broad_pairs(view, w, h, scene.mesh.objects.size());
+void find_broad_sheens(const SheenInputs& in, std::vector<MaterialEstimate>& estimates) {
+  const int w = in.gbuffer.width(), h = in.gbuffer.height();
+  const std::vector<BroadPairs> pairs = broad_pairs(in.view, w, h, in.scene.mesh.objects.size());
   std::vector<size_t> tried;
   std::vector<Vec3> colour;
   std::vector<std::string> candidates;
-  for (size_t k = 0; k < units.size(); ++k) {
+  for (size_t k = 0; k < in.units.size(); ++k) {
     MaterialEstimate& m = estimates[k];
     if (m.gloss) continue;
-    const Vec3 c = median_colour(view, pairs, units[k].objects);
+    const Vec3 c = median_colour(in.view, pairs, in.units[k].objects);
     if (c.maxCoeff() <= 0.0f || 1.0f - c.minCoeff() / c.maxCoeff() < kMinChroma) {
       m.reason += "; grey, so a broad sheen would not be told from its light";
       continue;
     }
     std::set<uint32_t> blocks;
-    for (const uint32_t o : units[k].objects) blocks.insert(pairs[o].block.begin(), pairs[o].block.end());
+    for (const uint32_t o : in.units[k].objects) blocks.insert(pairs[o].block.begin(), pairs[o].block.end());
     if (blocks.size() < kMinBlocks) {
       m.reason += "; too small a part of the view to tell a broad sheen on";
       continue;
@@ -254,31 +282,22 @@ void find_broad_sheens(const Scene& scene, const RayScene& rays, const GBuffer& 
     candidates.insert(candidates.end(), m.objects.begin(), m.objects.end());
   }
   if (tried.empty()) return;
-  std::unique_ptr<PhotoRadiance> shown;
-  if (analysis.options.bounce_source == BounceSource::photo)
-    shown = std::make_unique<PhotoRadiance>(scene.camera, gbuffer, photo, scene.probes, rays, scene.lights);
-  AnalysisOptions render = analysis.options;
-  render.paths_per_pixel = options.paths_per_pixel, render.seed = options.seed;
+  AnalysisOptions render = in.analysis.options;
+  render.paths_per_pixel = in.options.paths_per_pixel, render.seed = in.options.seed;
   std::vector<BroadFit> best(tried.size());
   std::vector<float> best_roughness(tried.size(), 0.0f);
   std::vector<Vec3> predicted(size_t(w) * h, Vec3::Zero());
   for (const float roughness : kRoughnessGrid) {
-    std::map<std::string, Gloss> materials;
-    for (const std::string& name : candidates) materials[name] = Gloss{roughness, kDefaultSpecular};
-    const Image highlights =
-        photo_highlights(scene, rays, gbuffer, lighting, SurfaceGloss(materials, scene.mesh), shown.get(), render,
-                         progress, fmt::format("sheens at roughness {:.2f}", roughness));
+    const Image highlights = photo_highlights(
+        in.scene, in.rays, in.gbuffer, in.lighting, SurfaceGloss(all_at(candidates, roughness), in.scene.mesh),
+        in.shown, render, in.progress, fmt::format("sheens at roughness {:.2f}", roughness));
     for (size_t i = 0; i < predicted.size(); ++i)
-      if (view.object[i] >= 0)
-        predicted[i] = highlights.pixels[i].cwiseQuotient(analysis.illumination.surface.pixels[i]);
+      if (in.view.object[i] >= 0)
+        predicted[i] = highlights.pixels[i].cwiseQuotient(in.analysis.illumination.surface.pixels[i]);
     for (size_t t = 0; t < tried.size(); ++t) {
       std::vector<const BroadPairs*> unit_pairs;
-      for (const uint32_t o : units[tried[t]].objects) unit_pairs.push_back(&pairs[o]);
-      BroadFit fit = fit_broad_sheen(unit_pairs, view, predicted, colour[t]);
-      // A sheen is fainter than a dielectric's brightest: a fit held at that
-      // bound is something else's shape (a checker's colours).
-      const bool within = fit.fit.scale > 0.0f && fit.fit.scale < 1.0f / kDefaultSpecular;
-      if (within && fit.fit.explained > best[t].fit.explained) best[t] = std::move(fit), best_roughness[t] = roughness;
+      for (const uint32_t o : in.units[tried[t]].objects) unit_pairs.push_back(&pairs[o]);
+      keep_if_better(fit_broad_sheen(unit_pairs, in.view, predicted, colour[t]), roughness, best[t], best_roughness[t]);
     }
   }
   for (size_t t = 0; t < tried.size(); ++t) {
@@ -364,48 +383,40 @@ std::vector<float> predicted_changes(const std::vector<SeenTwice>& points, const
 // radiances, where the colour's test divides by the simulated light (a
 // room's wall at 0.5 / 0.5: 0.55 / 0.77 by two views, 0.40 / 0.22 by its
 // colour; docs/benchmarks.md, "A sheen seen twice").
-void find_sheens_seen_twice(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Analysis& analysis,
-                            const Lighting& lighting, const Image& photo, const ViewPixels& view,
-                            const std::vector<EstimationUnit>& units, std::vector<MaterialEstimate>& estimates,
-                            const MaterialEstimationOptions& options, Progress& progress) {
+void find_sheens_seen_twice(const SheenInputs& in, std::vector<MaterialEstimate>& estimates) {
   const auto open = [&](size_t k) { return !estimates[k].gloss || estimates[k].cue == GlossCue::colour; };
-  std::vector<int32_t> unit_of(scene.mesh.objects.size(), -1);
+  std::vector<int32_t> unit_of(in.scene.mesh.objects.size(), -1);
   std::vector<std::string> candidates;
-  for (size_t k = 0; k < units.size(); ++k)
+  for (size_t k = 0; k < in.units.size(); ++k)
     if (open(k)) {
-      for (const uint32_t o : units[k].objects) unit_of[o] = int32_t(k);
+      for (const uint32_t o : in.units[k].objects) unit_of[o] = int32_t(k);
       candidates.insert(candidates.end(), estimates[k].objects.begin(), estimates[k].objects.end());
     }
   if (candidates.empty()) return;
   std::vector<std::vector<SeenTwice>> seen =
-      points_seen_twice(scene, rays, gbuffer, photo, view, unit_of, units.size());
+      points_seen_twice(in.scene, in.rays, in.gbuffer, in.photo, in.view, unit_of, in.units.size());
   std::vector<size_t> tried;
-  for (size_t k = 0; k < units.size(); ++k) {
+  for (size_t k = 0; k < in.units.size(); ++k) {
     if (!open(k)) continue;
     std::set<uint32_t> blocks;
     for (const SeenTwice& p : seen[k]) blocks.insert(p.block);
     if (blocks.size() >= kMinBlocks)
       tried.push_back(k);
-    else if (!scene.probes.empty() && !estimates[k].gloss)
+    else if (!in.scene.probes.empty() && !estimates[k].gloss)
       estimates[k].reason += "; too little of it seen by a probe as by the camera to compare their views";
   }
   if (tried.empty()) return;
-  std::unique_ptr<PhotoRadiance> shown;
-  if (analysis.options.bounce_source == BounceSource::photo)
-    shown = std::make_unique<PhotoRadiance>(scene.camera, gbuffer, photo, scene.probes, rays, scene.lights);
-  std::vector<BroadFit> best(units.size());
-  std::vector<float> best_roughness(units.size(), 0.0f);
+  std::vector<BroadFit> best(in.units.size());
+  std::vector<float> best_roughness(in.units.size(), 0.0f);
   for (const float roughness : kRoughnessGrid) {
     if (roughness < kMinTwoViewsRoughness) continue;
-    std::map<std::string, Gloss> materials;
-    for (const std::string& name : candidates) materials[name] = Gloss{roughness, kDefaultSpecular};
-    const SurfaceGloss gloss(materials, scene.mesh);
-    const PhotoSpecular specular(rays, lighting, gloss, shown.get(), analysis.options);
-    progress.begin(fmt::format("sheens seen twice at roughness {:.2f}", roughness), int64_t(tried.size()));
+    const SurfaceGloss gloss(all_at(candidates, roughness), in.scene.mesh);
+    const PhotoSpecular specular(in.rays, in.lighting, gloss, in.shown, in.analysis.options);
+    in.progress.begin(fmt::format("sheens seen twice at roughness {:.2f}", roughness), int64_t(tried.size()));
     for (const size_t k : tried) {
       const std::vector<SeenTwice>& points = seen[k];
-      const std::vector<float> predicted = predicted_changes(points, specular.reflection(), scene.camera.position(),
-                                                             options.paths_per_pixel, options.seed);
+      const std::vector<float> predicted = predicted_changes(points, specular.reflection(), in.scene.camera.position(),
+                                                             in.options.paths_per_pixel, in.options.seed);
       std::vector<float> shown_change(points.size());
       for (size_t n = 0; n < points.size(); ++n) shown_change[n] = points[n].change;
       const float predicted_middle = median_of(predicted), shown_middle = median_of(shown_change);
@@ -416,11 +427,10 @@ void find_sheens_seen_twice(const Scene& scene, const RayScene& rays, const GBuf
         f.block.push_back(points[n].block);
       }
       f.fit = fit_highlight(f.dx, f.dy, 1.0f / kDefaultSpecular);
-      const bool within = f.fit.scale > 0.0f && f.fit.scale < 1.0f / kDefaultSpecular;
-      if (within && f.fit.explained > best[k].fit.explained) best[k] = std::move(f), best_roughness[k] = roughness;
-      progress.advance();
+      keep_if_better(std::move(f), roughness, best[k], best_roughness[k]);
+      in.progress.advance();
     }
-    progress.end();
+    in.progress.end();
   }
   for (const size_t k : tried) {
     MaterialEstimate& m = estimates[k];
@@ -684,8 +694,14 @@ std::vector<MaterialEstimate> estimate_materials(const Scene& scene, const RaySc
     else
       m.gloss = Gloss{best_roughness[k], specular}, m.cue = GlossCue::highlight;
   }
-  find_broad_sheens(scene, rays, gbuffer, analysis, lighting, photo, view, units, estimates, options, progress);
-  find_sheens_seen_twice(scene, rays, gbuffer, analysis, lighting, photo, view, units, estimates, options, progress);
+  if (std::all_of(estimates.begin(), estimates.end(), [](const MaterialEstimate& m) { return bool(m.gloss); }))
+    return estimates;
+  std::unique_ptr<PhotoRadiance> shown;
+  if (analysis.options.bounce_source == BounceSource::photo)
+    shown = std::make_unique<PhotoRadiance>(scene.camera, gbuffer, photo, scene.probes, rays, scene.lights);
+  const SheenInputs sheen{scene, rays, gbuffer, analysis, lighting, photo, view, units, shown.get(), options, progress};
+  find_broad_sheens(sheen, estimates);
+  find_sheens_seen_twice(sheen, estimates);
   return estimates;
 }
 
