@@ -11,7 +11,7 @@ AnalysedScene::AnalysedScene(Scene scene) : scene_(std::move(scene)), rays_(std:
 void AnalysedScene::set_analysis(Analysis analysis) {
   analysis_ = std::move(analysis);
   // The analysis's units: the photo shows through where no geometry covers it.
-  if (analysis_.photo_exposure != Vec3::Ones()) apply_exposure(scene_.photo, analysis_.photo_exposure.cwiseInverse());
+  bring_to_analysis_units(scene_.photo, analysis_);
   environment_ = strategy_environment(scene_, *rays_, analysis_.options.strategy);
   const AlbedoImages& albedo = analysis_.albedo;
   bounce_albedo_ =

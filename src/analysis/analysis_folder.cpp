@@ -64,6 +64,7 @@ void write_options(nlohmann::json& j, const AnalysisOptions& o) {
   j["indirect_stride"] = o.indirect_stride;
   if (o.align_edges) j["align_edges"] = true;
   if (o.keep_camera) j["keep_camera"] = true;
+  if (o.keep_vignetting) j["keep_vignetting"] = true;
   if (o.preview) j["preview"] = true;
   if (o.method == AnalysisMethod::radiosity) {
     j["node_samples"] = o.node_samples;
@@ -100,6 +101,7 @@ AnalysisOptions read_options(const JsonReader& r, const nlohmann::json& j) {
   if (o.indirect_stride < 1) r.fail("/indirect_stride", "must be at least 1");
   if (const nlohmann::json* v = r.optional(j, "align_edges")) o.align_edges = r.boolean(*v, "/align_edges");
   if (const nlohmann::json* v = r.optional(j, "keep_camera")) o.keep_camera = r.boolean(*v, "/keep_camera");
+  if (const nlohmann::json* v = r.optional(j, "keep_vignetting")) o.keep_vignetting = r.boolean(*v, "/keep_vignetting");
   if (const nlohmann::json* v = r.optional(j, "preview")) o.preview = r.boolean(*v, "/preview");
   if (o.method == AnalysisMethod::radiosity) {
     o.node_samples = count("node_samples");
@@ -140,6 +142,7 @@ std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& optio
   if (options.bounce_source == BounceSource::photo) hash.add_text(" bounce-source photo");
   if (options.align_edges) hash.add_text(" align-edges");  // likewise
   if (options.keep_camera) hash.add_text(" keep-camera");  // likewise
+  if (options.keep_vignetting) hash.add_text(" keep-vignetting");  // likewise
   if (options.indirect_stride != 1) hash.add_text(fmt::format(" indirect-stride {}", options.indirect_stride));
   // Added only for radiosity, so that path analyses made before the method
   // existed stay valid.
@@ -180,6 +183,7 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   j["unseen_albedo"] = {a.albedo.mean.x(), a.albedo.mean.y(), a.albedo.mean.z()};
   if (a.photo_exposure != Vec3::Ones())
     j["photo_exposure"] = {a.photo_exposure.x(), a.photo_exposure.y(), a.photo_exposure.z()};
+  if (a.photo_vignetting) j["photo_vignetting"] = {{"r2", a.photo_vignetting->r2}, {"r4", a.photo_vignetting->r4}};
   if (a.registered_camera) j["camera"] = camera_to_json(*a.registered_camera);
   j["filled_pixels"] = a.albedo.filled;
   nlohmann::json triangles = nlohmann::json::array();
@@ -245,6 +249,11 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
     a.photo_exposure = r.vec3(*e, "/photo_exposure");
     if (!(a.photo_exposure.minCoeff() > 0.0f) || !a.photo_exposure.allFinite())
       r.fail("/photo_exposure", "expected three positive numbers");
+  }
+  if (const nlohmann::json* v = r.optional(j, "photo_vignetting")) {
+    r.expect_object(*v, "/photo_vignetting");
+    a.photo_vignetting = Vignetting{r.number(r.required(*v, "/photo_vignetting", "r2"), "/photo_vignetting/r2"),
+                                    r.number(r.required(*v, "/photo_vignetting", "r4"), "/photo_vignetting/r4")};
   }
   if (const nlohmann::json* camera = r.optional(j, "camera"))
     a.registered_camera = camera_from_json(r, *camera, "/camera");

@@ -8,6 +8,7 @@
 #include "analysis/probe_exposure.h"
 #include "analysis/radiosity_illumination.h"
 #include "analysis/surface_albedo.h"
+#include "analysis/vignetting.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "render/specular.h"
@@ -171,37 +172,74 @@ void report_edge_offset(const Scene& scene, const AlbedoImages& albedo, const st
         share);
 }
 
-// The photo's exposure against the probes (probe_exposure.h), from the
-// probe that shares the most surface points with it, where it differs from
-// 1 by more than kExposureTolerance; nothing where it does not or no probe
-// shares enough. The probes' units are the lights' wherever the lights were
+// What brings the photo to the probes' units, from the points it shares
+// with each probe that shows the scene as it does: its vignetting
+// (vignetting.h), unless kept, then its exposure (probe_exposure.h), from
+// the probe that shares the most points with it, where it differs from 1 by
+// more than kExposureTolerance. Nothing of either where no probe shares
+// enough. The probes' units are the lights' wherever the lights were
 // measured from them (`relight fit`) or rendered with them (a Blender scene).
-std::optional<Vec3> photo_exposure_against_the_probes(const Scene& scene, const RayScene& rays,
-                                                      const GBuffer& gbuffer) {
-  std::optional<ProbeExposure> best;
-  const Probe* best_probe = nullptr;
-  for (const Probe& probe : scene.probes)
-    if (const auto e = photo_exposure_against_probe(probe, scene, rays, gbuffer);
-        e && (!best || e->points > best->points)) {
-      best = e;
-      best_probe = &probe;
+struct PhotoUnits {
+  std::optional<Vignetting> vignetting;
+  std::optional<Vec3> exposure;
+};
+PhotoUnits photo_units_against_the_probes(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
+                                          bool keep_vignetting) {
+  std::vector<std::vector<SharedPoint>> shared;
+  for (const Probe& probe : scene.probes) shared.push_back(points_shared_with_photo(probe, scene, rays, gbuffer));
+  const auto showing = [&](const Image& photo) {  // the probes that show the scene as `photo` does
+    std::vector<size_t> probes;
+    for (size_t p = 0; p < shared.size(); ++p)
+      if (photo_exposure_from(shared[p], photo, scene.probes[p].path)) probes.push_back(p);
+    return probes;
+  };
+  std::vector<size_t> matched = showing(scene.photo);
+  PhotoUnits units;
+  Image devignetted;
+  if (!keep_vignetting) {
+    // A strong vignetting can make photo / probe vary as much as the photo
+    // does: where no probe shows the scene as the photo does, the fit is
+    // tried over every probe that shares enough with it, and kept where the
+    // photo without it matches one.
+    std::vector<size_t> fitted = matched;
+    for (size_t p = 0; matched.empty() && p < shared.size(); ++p)
+      if (shared[p].size() >= kMinExposurePoints) fitted.push_back(p);
+    std::vector<ProbePoints> probes;
+    for (const size_t p : fitted) probes.push_back({&shared[p], scene.probes[p].path});
+    std::optional<VignettingFit> fit = fit_vignetting(probes, scene.photo);
+    if (fit && matched.empty() && is_lens_vignetting(*fit)) {
+      remove_vignetting(devignetted = scene.photo, fit->falloff);
+      matched = showing(devignetted);
+      if (matched.empty()) fit.reset();
     }
-  if (!best) {
+    if (fit) units.vignetting = photo_vignetting(*fit, scene.path.string());
+    if (units.vignetting && devignetted.pixels.empty()) remove_vignetting(devignetted = scene.photo, *units.vignetting);
+  }
+  if (matched.empty()) {
     if (!scene.probes.empty())
       spdlog::info("exposure: no probe shows enough of the photo's surfaces as the photo does to match their "
                    "exposures; the photo is taken to be in the probes' units");
-    return std::nullopt;
+    return units;
   }
+  const Image& photo = units.vignetting ? devignetted : scene.photo;
+  std::optional<ProbeExposure> best;
+  const Probe* best_probe = nullptr;
+  for (const size_t p : matched)
+    if (const auto e = photo_exposure_from(shared[p], photo, scene.probes[p].path);
+        e && (!best || e->points > best->points))
+      best = e, best_probe = &scene.probes[p];
+  if (!best) return units;
   const Vec3& k = best->photo_over_probe;
   spdlog::info("exposure: the photo shows the surfaces {:.3f} {:.3f} {:.3f} times as bright as {} does ({} points, "
                "spread {:.3f}, photo spread {:.3f})",
                k.x(), k.y(), k.z(), best_probe->path, best->points, best->spread, best->photo_spread);
-  if (!exposure_differs(k)) return std::nullopt;
+  if (!exposure_differs(k)) return units;
   spdlog::warn("{}: the photo shows the surfaces {:.2f} times as bright as the probe {} does: it is divided by that, "
                "so the albedo and every re-lit image are in the probe's units and the lights'. `relight fit` brings "
                "the probe and the lights to the photo's instead",
                scene.path.string(), luminance(k), best_probe->path);
-  return k;
+  units.exposure = k;
+  return units;
 }
 
 // The renders an analysis by path tracing runs, in order, for the time
@@ -296,6 +334,11 @@ PhotoSpecular::PhotoSpecular(const RayScene& rays, const Lighting& lighting, con
       }),
       specular_(integrator_, gloss, surfaces_) {}
 
+void bring_to_analysis_units(Image& photo, const Analysis& analysis) {
+  if (analysis.photo_vignetting) remove_vignetting(photo, *analysis.photo_vignetting);
+  if (analysis.photo_exposure != Vec3::Ones()) apply_exposure(photo, analysis.photo_exposure.cwiseInverse());
+}
+
 Image photo_highlights(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const Lighting& lighting,
                        const SurfaceGloss& gloss, const PhotoRadiance* photo_radiance, const AnalysisOptions& options,
                        Progress& progress, const std::string& label) {
@@ -343,18 +386,18 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     radiosity =
         std::make_unique<RadiosityIllumination>(scene, rays, gbuffer, lighting, radiosity_options(options),
                                                 options.direct_per_pixel, illumination_options(options), progress);
-  // The photo as it is divided: in the probes' units where its exposure is
-  // not theirs (the light it bounces must be in the units of the light the
-  // probes give), and less the highlights of glossy surfaces (below).
+  // The photo as it is divided: its lens's vignetting divided out, in the
+  // probes' units where its exposure is not theirs (the light it bounces
+  // must be in the units of the light the probes give), and less the
+  // highlights of glossy surfaces (below).
   const bool glossy = sees_gloss(gbuffer, scene.gloss);
   Image photo_own;
-  const auto exposure = photo_exposure_against_the_probes(scene, rays, gbuffer);
-  if (exposure || glossy) photo_own = scene.photo;
-  if (exposure) {
-    result.photo_exposure = *exposure;
-    apply_exposure(photo_own, exposure->cwiseInverse());
-  }
-  const Image& photo = exposure || glossy ? photo_own : scene.photo;
+  const PhotoUnits units = photo_units_against_the_probes(scene, rays, gbuffer, options.keep_vignetting);
+  result.photo_vignetting = units.vignetting;
+  result.photo_exposure = units.exposure.value_or(Vec3::Ones());
+  const bool own = units.vignetting || units.exposure || glossy;
+  if (own) bring_to_analysis_units(photo_own = scene.photo, result);
+  const Image& photo = own ? photo_own : scene.photo;
   // Light bounced off what the photo shows is the photo's radiance there;
   // `albedo` then matters only on the surfaces the camera does not see.
   std::unique_ptr<PhotoRadiance> photo_radiance;

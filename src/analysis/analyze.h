@@ -17,6 +17,7 @@
 
 #include "analysis/albedo.h"
 #include "analysis/strategy.h"
+#include "analysis/vignetting.h"
 #include "core/progress.h"
 #include "render/gbuffer.h"
 #include "render/radiosity.h"
@@ -61,6 +62,9 @@ struct AnalysisOptions {
   // Analyse through the scene's camera as given; otherwise registered to the
   // photo where it is visibly off (register_when_off, camera_registration.h).
   bool keep_camera = false;
+  // Leave the photo's vignetting in it; otherwise one measured against the
+  // probes is divided out (photo_vignetting, vignetting.h).
+  bool keep_vignetting = false;
   // With method radiosity, per node (paths_per_pixel is the path tracer's):
   int node_samples = 64;  // for the light from the lights and the environment
   int gather_rays = 256;  // for the light from the other surfaces
@@ -102,6 +106,9 @@ struct Analysis {
   // found to differ from 1: the analysis divided photo / this, and the
   // albedo and every re-lit image are in the probes' units (the lights').
   Vec3 photo_exposure = Vec3::Ones();
+  // The photo's vignetting where found (vignetting.h): divided out of it
+  // before the exposure.
+  std::optional<Vignetting> photo_vignetting;
   // The camera the analysis saw the scene through where it is not the
   // scene's: registered to the photo (register_when_off). Every render of
   // the analysis takes it.
@@ -114,6 +121,10 @@ struct Analysis {
   Image specular;
   std::vector<uint8_t> highlights;
 };
+
+// `photo` brought to the units `analysis` divided it in: its vignetting
+// divided out, then its exposure.
+void bring_to_analysis_units(Image& photo, const Analysis& analysis);
 
 // The share of a pixel's photo (luminance) above which its highlight makes
 // it unreliable: the albedo would be the small difference of two large,

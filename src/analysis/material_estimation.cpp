@@ -14,6 +14,7 @@
 #include "analysis/probe_exposure.h"
 #include "analysis/strategy.h"
 #include "core/error.h"
+#include "core/statistics.h"
 #include "render/specular.h"
 
 namespace relight {
@@ -33,10 +34,9 @@ constexpr float kMinSpecular = 0.05f;
 // at one pixel, a broad one over several.
 constexpr int kSteps[] = {1, 2, 4};
 // A broad sheen's steps, in parts of the view's width (a 40th, 20th and
-// 10th: the scene's scale, whatever the photo's size), and the jackknife's
-// blocks (a tenth of the width: as far as the longest step).
+// 10th: the scene's scale, whatever the photo's size), as far as the
+// jackknife's blocks (jackknife_block: a tenth of the width).
 constexpr int kBroadStepsPerWidth[] = {40, 20, 10};
-constexpr int kBlocksPerWidth = 10;
 // About the most pixels a broad fit takes as the first of its pairs (a
 // larger view is sampled on a grid).
 constexpr double kBroadPixels = 5e5;
@@ -140,7 +140,6 @@ struct BroadPairs {
 std::vector<BroadPairs> broad_pairs(const ViewPixels& view, int w, int h, size_t objects) {
   std::vector<BroadPairs> pairs(objects);
   const int stride = std::max(1, int(std::lround(std::sqrt(double(w) * h / kBroadPixels))));
-  const int block = std::max(1, w / kBlocksPerWidth), blocks_across = (w + block - 1) / block;
   for (int y = 0; y < h; y += stride)
     for (int x = 0; x < w; x += stride) {
       const size_t i = size_t(y) * w + x;
@@ -148,7 +147,7 @@ std::vector<BroadPairs> broad_pairs(const ViewPixels& view, int w, int h, size_t
       if (o < 0) continue;
       BroadPairs& p = pairs[size_t(o)];
       p.pixels.push_back(uint32_t(i));
-      const uint32_t b = uint32_t((y / block) * blocks_across + x / block);
+      const uint32_t b = jackknife_block(x, y, w);
       for (const int parts : kBroadStepsPerWidth) {
         const int step = std::max(1, w / parts);
         for (const size_t j : {x + step < w ? i + step : i, y + step < h ? i + size_t(step) * w : i})
@@ -330,7 +329,6 @@ std::vector<std::vector<SeenTwice>> points_seen_twice(const Scene& scene, const 
                                                       const Image& photo, const ViewPixels& view,
                                                       const std::vector<int32_t>& unit_of, size_t units) {
   const int w = gbuffer.width();
-  const int block = std::max(1, w / kBlocksPerWidth), blocks_across = (w + block - 1) / block;
   std::vector<std::vector<SeenTwice>> seen(units);
   for (const Probe& probe : scene.probes) {
     const std::vector<SharedPoint> shared = points_shared_with_photo(probe, scene, rays, gbuffer);
@@ -341,8 +339,7 @@ std::vector<std::vector<SeenTwice>> points_seen_twice(const Scene& scene, const 
       const float p = luminance(photo.pixels[s.pixel]), q = luminance(s.probe), mean = 0.5f * (p + q);
       if (!(mean > 0.0f)) continue;
       const int x = int(s.pixel % size_t(w)), y = int(s.pixel / size_t(w));
-      seen[size_t(unit_of[o])].push_back(
-          {s.point, probe.position, uint32_t((y / block) * blocks_across + x / block), (p - q) / mean, mean});
+      seen[size_t(unit_of[o])].push_back({s.point, probe.position, jackknife_block(x, y, w), (p - q) / mean, mean});
     }
   }
   // Every so many of an object's points where it has more than the fit
@@ -455,11 +452,11 @@ void find_sheens_seen_twice(const SheenInputs& in, std::vector<MaterialEstimate>
   }
 }
 
-// The photo as the analysis divided it: in the probes' units, less the
+// The photo as the analysis divided it: in its units (vignetting, exposure), less the
 // highlights of the surfaces given glossy.
 Image photo_as_divided(const Scene& scene, const Analysis& analysis) {
   Image photo = scene.photo;
-  apply_exposure(photo, analysis.photo_exposure.cwiseInverse());
+  bring_to_analysis_units(photo, analysis);
   if (!analysis.specular.pixels.empty())
     for (size_t i = 0; i < photo.size(); ++i)
       photo.pixels[i] = (photo.pixels[i] - analysis.coverage[i] * analysis.specular.pixels[i]).cwiseMax(0.0f);

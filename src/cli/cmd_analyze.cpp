@@ -208,6 +208,9 @@ void add_analyze_command(CLI::App& app, Action& action) {
                 "analyse through the scene's camera as given; by default a camera whose view of the geometry is "
                 "visibly off the photo's edges (by over 1.5 px) is registered to them first, as `relight register` does, "
                 "and analysis.json keeps it for every render");
+  cmd->add_flag("--keep-vignetting", args->options.keep_vignetting,
+                "leave the photo's vignetting in it; by default a darkening towards its corners that the probes "
+                "show is not the surfaces' (5 % or more, clear of the noise) is divided out first");
   cmd->add_option("--indirect-stride", args->options.indirect_stride,
                   "the environment and bounce light (smooth) traced at every N-th pixel each way and interpolated "
                   "along the surfaces between; the lights' direct light is traced at every pixel. 1: every pixel; "
