@@ -465,9 +465,10 @@ TEST_P(VignettedPublicScene, ALensFalloffIsDividedOut) {
   EXPECT_GT(out, in + 2.5);
 }
 
-// The studio's closed room, measured by hand (docs/benchmarks.md, "A lens's
-// vignetting"), is left out for CI's time.
-INSTANTIATE_TEST_SUITE_P(PublicScenes, VignettedPublicScene, testing::Values("outdoor", "bookcase"));
+// The bookcase, where the fit is hardest; the outdoor scene and the
+// studio, measured by hand (docs/benchmarks.md, "A lens's vignetting"), are
+// left out for CI's time.
+INSTANTIATE_TEST_SUITE_P(PublicScenes, VignettedPublicScene, testing::Values("bookcase"));
 
 // `radiance` (at most 1) encoded by the tone curve encoded = linear^(1/2.2),
 // rounded to 8 bits and written as a PNG.
