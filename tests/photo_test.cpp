@@ -430,11 +430,10 @@ INSTANTIATE_TEST_SUITE_P(PublicScenes, LdrPublicScene, testing::Values("outdoor"
 class VignettedPublicScene : public testing::TestWithParam<const char*> {};
 
 // The public scene's photo darkened by a lens's falloff, 35 % at the
-// corners (1 - 0.35 r^2): divided out, the albedo comes within 2 dB of the
-// photo's own (the bookcase's photo / probe is 3.8 % brighter at its
-// corners to begin with, and the fit takes that for less falloff: 1.7 dB
-// at the defaults), and at least 2.5 dB above the albedo with it kept. The
-// photo as it is has none found.
+// corners (1 - 0.35 r^2): divided out, the albedo comes within 1 dB of the
+// photo's own (the bookcase at 4 paths: 0.25 dB; at the defaults 0.9 dB,
+// the falloff's shape between the corners and the centre), and at least
+// 2.5 dB above the albedo with it kept. The photo as it is has none found.
 TEST_P(VignettedPublicScene, ALensFalloffIsDividedOut) {
   const auto folder = test::reference_scenes_folder() / GetParam();
   if (!std::filesystem::exists(folder / "scene.json")) GTEST_SKIP() << folder << " absent";
@@ -460,8 +459,8 @@ TEST_P(VignettedPublicScene, ALensFalloffIsDividedOut) {
   std::printf(
       "[ figures  ] %s albedo: photo %.2f dB; vignetted 35 %%, divided out (corners %.3f) %.2f dB, kept %.2f dB\n",
       GetParam(), own, divided.photo_vignetting->corner(), out, in);
-  EXPECT_NEAR(divided.photo_vignetting->corner(), 0.65f, 0.04f);
-  EXPECT_GT(out, own - 2.0);
+  EXPECT_NEAR(divided.photo_vignetting->corner(), 0.65f, 0.02f);
+  EXPECT_GT(out, own - 1.0);
   EXPECT_GT(out, in + 2.5);
 }
 
@@ -704,15 +703,15 @@ float test_falloff(int x, int y, int w, int h) {
   return 1.0f - 0.3f * (dx * dx + dy * dy) / (0.25f * float(w * w + h * h));
 }
 
-// Points a photo shares with two probes at other exposures (2 and 0.5 of
-// the photo's), the photo's pixels darkened by `falloff` and every ratio
-// off by up to 5 % (the views' noise): the fit finds the falloff, whatever
-// the probes' exposures, and finds none where there is none.
-TEST(Vignetting, TheFitFindsTheFalloffWhateverTheProbesExposures) {
+// Points a photo shares with a probe at another exposure (twice the
+// photo's), the photo's pixels darkened by `falloff` and every ratio off by
+// up to 5 % (the views' noise): the fit finds the falloff, whatever the
+// probe's exposure, and finds none where there is none.
+TEST(Vignetting, TheFitFindsTheFalloffWhateverTheProbesExposure) {
   const int w = 160, h = 120;
   const auto fit_with = [&](const std::function<float(int, int)>& falloff) {
     Image photo(w, h);
-    std::array<std::vector<SharedPoint>, 2> shared;
+    std::vector<SharedPoint> shared;
     SurfacePoint point;  // not read by the fit
     point.position = point.normal = point.geometric_normal = Vec3::Zero();
     Rng rng(7, 0);
@@ -720,11 +719,10 @@ TEST(Vignetting, TheFitFindsTheFalloffWhateverTheProbesExposures) {
       for (int x = 0; x < w; ++x) {
         const Vec3 radiance = Vec3::Constant(0.2f + 0.6f * rng.uniform());
         photo.at(x, y) = radiance * falloff(x, y);
-        const size_t probe = size_t(x + y) % 2;
         const float noise = 1.0f + 0.1f * (rng.uniform() - 0.5f);
-        shared[probe].push_back({point, size_t(y) * w + x, radiance * (probe ? 0.5f : 2.0f) * noise});
+        shared.push_back({point, size_t(y) * w + x, radiance * 2.0f * noise});
       }
-    return fit_vignetting({{&shared[0], "probe 1"}, {&shared[1], "probe 2"}}, photo);
+    return fit_vignetting(shared, photo);
   };
   const auto lens = fit_with([&](int x, int y) { return test_falloff(x, y, w, h); });
   ASSERT_TRUE(lens);
@@ -758,7 +756,7 @@ TEST(AnalyzeWithProbe, APhotosVignettingIsDividedOut) {
   f.replace_photo(photo);
   const auto r = run_cli({"analyze", (f / "scene.json").string(), "-o", (f / "divided").string(), "--spp", "2"});
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.err.find("the photo is 30 % darker at its corners than at its centre against the probes"),
+  EXPECT_NE(r.err.find("the photo is 30 % darker at its corners than at its centre against what a probe shows"),
             std::string::npos)
       << r.err;
   const json recorded = json::parse(test::read_text(f / "divided" / "analysis.json"));

@@ -21,39 +21,34 @@ double radius_squared(double x, double y, int w, int h) {
   return (dx * dx + dy * dy) / (0.25 * (double(w) * w + double(h) * h));
 }
 
-// One point of the fit: log(photo / probe) at r^2, from probe `probe`, in
-// the photo's jackknife block `block`.
+// One point of the fit: log(photo / probe) at r^2, in the photo's
+// jackknife block `block`.
 struct Sample {
   double r2, log_ratio;
-  size_t probe;
   uint32_t block;
 };
 
 // The normal equations of the weighted least squares over some samples:
-// unknowns a, b and one log exposure per probe.
+// unknowns a, b and the probe's log exposure.
 struct Normal {
-  Eigen::MatrixXd xtx;
-  Eigen::VectorXd xty;
-  explicit Normal(size_t unknowns)
-      : xtx(Eigen::MatrixXd::Zero(unknowns, unknowns)), xty(Eigen::VectorXd::Zero(unknowns)) {}
+  Eigen::Matrix3d xtx = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d xty = Eigen::Vector3d::Zero();
   void add(const Sample& s, double weight) {
-    const size_t n = size_t(xty.size());
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-    x(0) = s.r2, x(1) = s.r2 * s.r2, x(2 + s.probe) = 1.0;
+    const Eigen::Vector3d x(s.r2, s.r2 * s.r2, 1.0);
     xtx += weight * x * x.transpose();
     xty += weight * s.log_ratio * x;
   }
-  Eigen::VectorXd solve() const { return xtx.ldlt().solve(xty); }
+  Eigen::Vector3d solve() const { return xtx.ldlt().solve(xty); }
 };
 
-double residual(const Sample& s, const Eigen::VectorXd& p) {
-  return s.log_ratio - (p(0) * s.r2 + p(1) * s.r2 * s.r2 + p(2 + s.probe));
+double residual(const Sample& s, const Eigen::Vector3d& p) {
+  return s.log_ratio - (p(0) * s.r2 + p(1) * s.r2 * s.r2 + p(2));
 }
 
 // Huber weights for residuals at `scale` (1.4826 x their median absolute
 // value): a surface the views see differently (a sheen, a misplaced edge)
 // pulls no harder than any point a little off.
-std::vector<double> huber_weights(const std::vector<Sample>& samples, const Eigen::VectorXd& p) {
+std::vector<double> huber_weights(const std::vector<Sample>& samples, const Eigen::Vector3d& p) {
   std::vector<double> r(samples.size());
   for (size_t i = 0; i < samples.size(); ++i) r[i] = std::abs(residual(samples[i], p));
   const double scale = std::max(1e-6, 1.4826 * percentile(r, 0.5)), k = 1.345 * scale;
@@ -72,44 +67,42 @@ float Vignetting::at(int x, int y, int w, int h) const {
 
 float Vignetting::corner() const { return std::exp(r2 + r4); }
 
-std::optional<VignettingFit> fit_vignetting(const std::vector<ProbePoints>& probes, const Image& photo) {
+std::optional<VignettingFit> fit_vignetting(const std::vector<SharedPoint>& shared, const Image& photo) {
   const int w = photo.width, h = photo.height;
   std::vector<Sample> samples;
   std::set<uint32_t> outer;
-  for (size_t p = 0; p < probes.size(); ++p)
-    for (const SharedPoint& s : *probes[p].points) {
-      const float shown = luminance(photo.pixels[s.pixel]), probe = luminance(s.probe);
-      if (!(shown > 0.0f) || !(probe > 0.0f)) continue;
-      const int x = int(s.pixel % size_t(w)), y = int(s.pixel / size_t(w));
-      const double r2 = radius_squared(x, y, w, h);
-      const uint32_t block = jackknife_block(x, y, w);
-      samples.push_back({r2, std::log(double(shown) / double(probe)), p, block});
-      if (r2 >= double(kMinVignettingReach) * kMinVignettingReach) outer.insert(block);
-    }
+  for (const SharedPoint& s : shared) {
+    const float shown = luminance(photo.pixels[s.pixel]), probe = luminance(s.probe);
+    if (!(shown > 0.0f) || !(probe > 0.0f)) continue;
+    const int x = int(s.pixel % size_t(w)), y = int(s.pixel / size_t(w));
+    const double r2 = radius_squared(x, y, w, h);
+    const uint32_t block = jackknife_block(x, y, w);
+    samples.push_back({r2, std::log(double(shown) / double(probe)), block});
+    if (r2 >= double(kMinVignettingReach) * kMinVignettingReach) outer.insert(block);
+  }
   if (samples.size() < kMinExposurePoints) return std::nullopt;
-  const size_t unknowns = 2 + probes.size();
   // Iteratively reweighted least squares from the plain fit.
   std::vector<double> weight(samples.size(), 1.0);
-  Eigen::VectorXd p;
+  Eigen::Vector3d p;
   for (int round = 0; round < 8; ++round) {
-    Normal all(unknowns);
+    Normal all;
     for (size_t i = 0; i < samples.size(); ++i) all.add(samples[i], weight[i]);
     p = all.solve();
     weight = huber_weights(samples, p);
   }
   // The jackknife over the photo's blocks, at the last weights: each block's
   // share of the normal equations taken out in turn.
-  Normal all(unknowns);
+  Normal all;
   std::map<uint32_t, Normal> per_block;
   for (size_t i = 0; i < samples.size(); ++i) {
     all.add(samples[i], weight[i]);
-    per_block.try_emplace(samples[i].block, unknowns).first->second.add(samples[i], weight[i]);
+    per_block[samples[i].block].add(samples[i], weight[i]);
   }
   std::vector<double> corner;
   for (const auto& [block, part] : per_block) {
     Normal without = all;
     without.xtx -= part.xtx, without.xty -= part.xty;
-    const Eigen::VectorXd q = without.solve();
+    const Eigen::Vector3d q = without.solve();
     if (q.allFinite()) corner.push_back(q(0) + q(1));
   }
   double mean = 0.0, spread = 0.0;
@@ -134,19 +127,19 @@ bool is_lens_vignetting(const VignettingFit& fit) {
 std::optional<Vignetting> photo_vignetting(const VignettingFit& fit, const std::string& scene_path) {
   const float corner = fit.falloff.corner();
   spdlog::info(
-      "vignetting: the photo's corners {:.3f} times as bright as its centre against the probes ({} points, "
+      "vignetting: the photo's corners {:.3f} times as bright as its centre against a probe ({} points, "
       "{:.1f} standard errors clear of none, {} blocks {:.0f} % or more of the way to the corners)",
       corner, fit.points, fit.significance, fit.outer_blocks, 100.0f * kMinVignettingReach);
   if (is_lens_vignetting(fit)) {
     spdlog::warn(
-        "{}: the photo is {:.0f} % darker at its corners than at its centre against the probes (a lens's "
+        "{}: the photo is {:.0f} % darker at its corners than at its centre against what a probe shows (a lens's "
         "vignetting): divided out before the analysis (--keep-vignetting leaves it in)",
         scene_path, 100.0f * (1.0f - corner));
     return fit.falloff;
   }
   if (corner < kMaxVignetting && fit.significance >= kMinVignettingSignificance)
     spdlog::warn(
-        "{}: the photo is {:.0f} % darker at its corners than at its centre against the probes: more than a "
+        "{}: the photo is {:.0f} % darker at its corners than at its centre against what a probe shows: more than a "
         "lens vignettes, so it is left as it is (is the camera or the geometry off?)",
         scene_path, 100.0f * (1.0f - corner));
   return std::nullopt;

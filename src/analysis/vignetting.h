@@ -5,7 +5,7 @@
 // photo, so photo / probe over the points both show is the probe's exposure
 // times the photo's falloff at each point's place in the photo: fitted as
 // log falloff = a r^2 + b r^4 (r: the distance from the photo's centre over
-// its half diagonal), robustly, with one exposure per probe.
+// its half diagonal) plus the probe's log exposure, robustly.
 #pragma once
 
 #include <cstdint>
@@ -39,20 +39,15 @@ inline constexpr float kMinVignettingReach = 0.6f;
 inline constexpr size_t kMinVignettingBlocks = 10;
 inline constexpr float kMaxVignetting = 0.25f;
 
-// The points one probe shares with the photo (points_shared_with_photo),
-// where that probe shows the scene as the photo does.
-struct ProbePoints {
-  const std::vector<SharedPoint>* points;
-  std::string probe_name;
-};
-
-// The fit over `probes`' points of `photo` and what it found.
+// The fit over the points a probe shares with `photo`
+// (points_shared_with_photo) and what it found; nothing where fewer than
+// kMinExposurePoints are usable.
 struct VignettingFit {
   Vignetting falloff;
   float significance = 0.0f;  // of log corner(), in jackknife standard errors
   size_t points = 0, outer_blocks = 0;
 };
-std::optional<VignettingFit> fit_vignetting(const std::vector<ProbePoints>& probes, const Image& photo);
+std::optional<VignettingFit> fit_vignetting(const std::vector<SharedPoint>& shared, const Image& photo);
 
 // Whether a fit's falloff is one to divide out: it darkens the corners
 // clearly and no more than a lens does.
