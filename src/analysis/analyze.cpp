@@ -187,54 +187,55 @@ PhotoUnits photo_units_against_the_probes(const Scene& scene, const RayScene& ra
                                           bool keep_vignetting) {
   std::vector<std::vector<SharedPoint>> shared;
   for (const Probe& probe : scene.probes) shared.push_back(points_shared_with_photo(probe, scene, rays, gbuffer));
-  const auto showing = [&](const Image& photo) {  // the probes that show the scene as `photo` does
-    std::vector<size_t> probes;
-    for (size_t p = 0; p < shared.size(); ++p)
-      if (photo_exposure_from(shared[p], photo, scene.probes[p].path)) probes.push_back(p);
-    return probes;
+  // Per probe: the photo's exposure against it, where it shows the scene as `photo` does.
+  const auto exposures_of = [&](const Image& photo) {
+    std::vector<std::optional<ProbeExposure>> e;
+    for (size_t p = 0; p < shared.size(); ++p) e.push_back(photo_exposure_from(shared[p], photo, scene.probes[p].path));
+    return e;
   };
-  std::vector<size_t> matched = showing(scene.photo);
+  const auto any = [](const std::vector<std::optional<ProbeExposure>>& e) {
+    return std::any_of(e.begin(), e.end(), [](const auto& x) { return x.has_value(); });
+  };
+  std::vector<std::optional<ProbeExposure>> exposures = exposures_of(scene.photo);
   PhotoUnits units;
-  Image devignetted;
   if (!keep_vignetting) {
-    // A strong vignetting can make photo / probe vary as much as the photo
-    // does: where no probe shows the scene as the photo does, the fit is
-    // tried over every probe that shares enough with it, and kept where the
-    // photo without it matches one.
-    std::vector<size_t> fitted = matched;
-    for (size_t p = 0; matched.empty() && p < shared.size(); ++p)
-      if (shared[p].size() >= kMinExposurePoints) fitted.push_back(p);
     // The probe that shares the most points decides, as for the exposure
     // (pooled, the bookcase's mirror ball, 10 % brighter at the photo's
     // corners than its equirect beside it, drew the fit 0.678 for 0.65).
+    // A strong vignetting can make photo / probe vary as much as the photo
+    // does: where no probe shows the scene as the photo does, every probe
+    // that shares enough is a candidate, and the falloff is kept where the
+    // photo without it matches one.
+    const bool matched = any(exposures);
+    std::optional<size_t> decider;
+    for (size_t p = 0; p < shared.size(); ++p)
+      if ((matched ? exposures[p].has_value() : shared[p].size() >= kMinExposurePoints) &&
+          (!decider || shared[p].size() > shared[*decider].size()))
+        decider = p;
     std::optional<VignettingFit> fit;
-    if (!fitted.empty())
-      fit = fit_vignetting(
-          shared[*std::max_element(fitted.begin(), fitted.end(),
-                                   [&](size_t a, size_t b) { return shared[a].size() < shared[b].size(); })],
-          scene.photo);
-    if (fit && matched.empty() && is_lens_vignetting(*fit)) {
-      remove_vignetting(devignetted = scene.photo, fit->falloff);
-      matched = showing(devignetted);
-      if (matched.empty()) fit.reset();
+    if (decider) fit = fit_vignetting(shared[*decider], scene.photo);
+    if (fit && is_lens_vignetting(*fit)) {
+      Image devignetted = scene.photo;
+      remove_vignetting(devignetted, fit->falloff);
+      std::vector<std::optional<ProbeExposure>> without = exposures_of(devignetted);
+      if (matched || any(without))
+        exposures = std::move(without);
+      else
+        fit.reset();
     }
     if (fit) units.vignetting = photo_vignetting(*fit, scene.path.string());
-    if (units.vignetting && devignetted.pixels.empty()) remove_vignetting(devignetted = scene.photo, *units.vignetting);
   }
-  if (matched.empty()) {
+  std::optional<ProbeExposure> best;
+  const Probe* best_probe = nullptr;
+  for (size_t p = 0; p < exposures.size(); ++p)
+    if (exposures[p] && (!best || exposures[p]->points > best->points))
+      best = exposures[p], best_probe = &scene.probes[p];
+  if (!best) {
     if (!scene.probes.empty())
       spdlog::info("exposure: no probe shows enough of the photo's surfaces as the photo does to match their "
                    "exposures; the photo is taken to be in the probes' units");
     return units;
   }
-  const Image& photo = units.vignetting ? devignetted : scene.photo;
-  std::optional<ProbeExposure> best;
-  const Probe* best_probe = nullptr;
-  for (const size_t p : matched)
-    if (const auto e = photo_exposure_from(shared[p], photo, scene.probes[p].path);
-        e && (!best || e->points > best->points))
-      best = e, best_probe = &scene.probes[p];
-  if (!best) return units;
   const Vec3& k = best->photo_over_probe;
   spdlog::info("exposure: the photo shows the surfaces {:.3f} {:.3f} {:.3f} times as bright as {} does ({} points, "
                "spread {:.3f}, photo spread {:.3f})",
