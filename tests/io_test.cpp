@@ -209,6 +209,20 @@ TEST_F(SceneFolder, CameraUpParallelToView) {
   EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/up", "parallel");
 }
 
+TEST_F(SceneFolder, CameraDistortionWithThreeNumbers) {
+  scene["camera"]["distortion"] = json::array({-0.1, 0.01, 0.0});
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/distortion", "[k1, k2]");
+}
+
+// k1 = k2 = -1 on a 35-degree lens: the radius bends back 92 % of the way to the corners.
+TEST_F(SceneFolder, CameraDistortionThatFoldsWithinThePhoto) {
+  scene["camera"]["distortion"] = json::array({-1.0, -1.0});
+  EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/distortion", "bend", "corners");
+  scene["camera"]["distortion"] = json::array({-0.1});
+  write_text(scene_path(), scene.dump(2));
+  EXPECT_NEAR(load_scene(scene_path()).camera.spec().distortion.x(), -0.1f, 1e-7f);
+}
+
 TEST_F(SceneFolder, CameraLookingAtItself) {
   scene["camera"]["look_at"] = scene["camera"]["position"];
   EXPECT_MENTIONS(load_error(), scene_path().string(), "/camera/look_at");

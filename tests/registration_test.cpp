@@ -1,7 +1,8 @@
 // Camera registration (analysis/camera_registration.h): the camera of a
 // photographed scene turned 1 degree, its field of view 3 % wide, its
 // principal point 1 % of the width off, each alone and all together, comes
-// back to the true camera; a camera far off is refused. On the example room
+// back to the true camera, as does a lens's barrel distortion; a camera far
+// off is refused. On the example room
 // (rendered here, always run) and on the reference scenes (label reference).
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -53,13 +54,13 @@ CameraSpec perturbed(const Camera& truth, const Perturbation& p) {
 // principal point, and what the pixels see: the largest distance (pixels)
 // between where the two cameras show a direction, over a grid on the photo.
 struct Errors {
-  float turn_deg, fov_percent, principal_px, view_px;
+  float turn_deg, fov_percent, principal_px, view_px, k1;
 };
 Errors errors(const CameraSpec& truth, const CameraSpec& camera, int width, int height) {
   RegistrationResult r;
   r.before = truth, r.after = camera;
   return {r.turned_deg(), 100.0f * std::abs(r.fov_change()), r.principal_point_shift_px(width, height).norm(),
-          view_difference_px(truth, camera, width, height)};
+          view_difference_px(truth, camera, width, height), std::abs(camera.distortion.x() - truth.distortion.x())};
 }
 
 // Registers `scene` from its camera perturbed by p; the errors before and after.
@@ -71,10 +72,10 @@ std::pair<Errors, Errors> register_perturbed(Scene scene, const RayScene& rays, 
   const Errors before = errors(truth, r.before, w, h), after = errors(truth, r.after, w, h);
   std::printf(
       "[ figures  ] %s: %.3g deg, %.3g %% fov, %.3g px principal point, view %.3g px off before; "
-      "%.3g deg, %.3g %% fov, %.3g px, view %.3g px, %.3g cm after; edge mismatch %.3f -> %.3f px\n",
+      "%.3g deg, %.3g %% fov, %.3g px, view %.3g px, %.3g cm, k1 %.3g after; edge mismatch %.3f -> %.3f px\n",
       p.name, before.turn_deg, before.fov_percent, before.principal_px, before.view_px, after.turn_deg,
       after.fov_percent, after.principal_px, after.view_px, 100.0f * (r.after.position - truth.position).norm(),
-      r.mismatch_before_px, r.mismatch_after_px);
+      r.after.distortion.x(), r.mismatch_before_px, r.mismatch_after_px);
   return {before, after};
 }
 
@@ -120,6 +121,33 @@ TEST_F(RoomRegistration, TrueCameraStays) {
   EXPECT_LE(after.turn_deg, 0.15f);
   EXPECT_LE(after.fov_percent, 0.3f);
   EXPECT_LE(after.view_px, 1.5f);
+  EXPECT_EQ(after.k1, 0.0f);  // a pinhole's photo: no distortion taken up
+}
+
+// A wide lens's barrel distortion (k1 = -0.1: the corners 12 px in) that
+// the pinhole camera was matched without is found, and the registered
+// camera's pixels see near what the lens's do (the corners, beyond the
+// room's edges, a few pixels off).
+TEST_F(RoomRegistration, ALensesBarrelDistortionIsFound) {
+  Scene scene = *scene_;
+  CameraSpec lens = scene.camera.spec();
+  lens.distortion = Vec2(-0.1f, 0.0f);
+  const Camera truth(lens, 320, 240);
+  const GBuffer gbuffer(truth, *rays_, 4, 5, "room");
+  const example::RoomAlbedo albedo = example::room_albedo();
+  scene.photo =
+      synthesize_photo(gbuffer, truth, Integrator(*rays_, example::room_lighting(scene, scene.lights), &albedo), albedo,
+                       16, 3, Progress::silent());
+  const RegistrationResult r = register_camera(scene, *rays_, RegistrationOptions{}, Progress::silent());
+  const Errors before = errors(lens, r.before, 320, 240), after = errors(lens, r.after, 320, 240);
+  std::printf(
+      "[ figures  ] barrel k1 -0.1, matched as a pinhole (view %.3g px off): k1 %.3g, %.3g deg, %.3g %% fov, "
+      "view %.3g px off after; edge mismatch %.3f -> %.3f px\n",
+      before.view_px, r.after.distortion.x(), after.turn_deg, after.fov_percent, after.view_px, r.mismatch_before_px,
+      r.mismatch_after_px);
+  EXPECT_GE(before.view_px, 8.0f);
+  EXPECT_NEAR(r.after.distortion.x(), -0.1f, 0.03f);
+  EXPECT_LE(after.view_px, 4.0f);
 }
 
 TEST_F(RoomRegistration, RefusesACameraFarOff) {

@@ -597,6 +597,47 @@ TEST(Camera, OffCentrePrincipalPointRaysAreTheFormula) {
   }
 }
 
+// A lens's radial distortion (docs/formats.md): a point whose pinhole image
+// lies at u focal lengths from the principal point shows at
+// u (1 + k1 |u|^2 + k2 |u|^4), computed here in double from the text; and
+// ray_direction and project stay each other's inverse.
+TEST(Camera, ADistortedLensShowsAPointWhereThePolynomialSays) {
+  for (CameraCase c : off_centre_cases()) {
+    c.spec.distortion = Vec2(-0.08f, 0.01f);
+    const Camera pinhole(
+        CameraSpec{c.spec.position, c.spec.look_at, c.spec.up, c.spec.vfov_deg, c.spec.principal_point}, c.width,
+        c.height);
+    const Camera lens(c.spec, c.width, c.height);
+    ASSERT_FALSE(lens.distortion_folds());
+    const double f = 0.5 * c.height / std::tan(c.spec.vfov_deg * kPiD / 360.0);
+    const Eigen::Vector2d centre(c.spec.principal_point.x() * c.width, c.spec.principal_point.y() * c.height);
+    Rng rng(23, 0);
+    for (int i = 0; i < 500; ++i) {
+      const Vec2 pixel(rng.uniform() * c.width, rng.uniform() * c.height);
+      const Vec3 p = c.spec.position + 3.0f * pinhole.ray_direction(pixel.x(), pixel.y());
+      const Eigen::Vector2d u = (pixel.cast<double>() - centre) / f;
+      const double r2 = u.squaredNorm();
+      const Eigen::Vector2d shown = centre + f * u * (1.0 + r2 * (-0.08 + r2 * 0.01));
+      const auto projected = lens.project(p);
+      ASSERT_TRUE(projected.has_value());
+      ASSERT_LT((projected->cast<double>() - shown).norm(), 2e-3) << "pixel " << pixel.transpose();
+      ASSERT_LT((lens.ray_direction(projected->x(), projected->y()) - (p - c.spec.position).normalized()).norm(),
+                1e-5f);
+    }
+  }
+}
+
+// Radius r shows at r (1 + k1 r^2), at most 2 / (3 sqrt(-3 k1)) where k1 < 0.
+TEST(Camera, ADistortionThatBendsBackWithinThePhotoFolds) {
+  CameraCase c = camera_cases()[1];       // 80 degrees: the corners 0.98 focal lengths out
+  c.spec.distortion = Vec2(-0.1f, 0.0f);  // reaches 1.22
+  EXPECT_FALSE(Camera(c.spec, c.width, c.height).distortion_folds());
+  c.spec.distortion = Vec2(-0.3f, 0.0f);  // turns back at 0.70, short of the corners
+  EXPECT_TRUE(Camera(c.spec, c.width, c.height).distortion_folds());
+  c.spec.distortion = Vec2(0.5f, 0.0f);  // pincushion never turns back
+  EXPECT_FALSE(Camera(c.spec, c.width, c.height).distortion_folds());
+}
+
 TEST(Camera, OffCentrePrincipalPointLooksAtLookAtWithTheSameFocalLength) {
   for (const auto& c : off_centre_cases()) {
     const Camera cam(c.spec, c.width, c.height);

@@ -93,13 +93,19 @@ std::vector<Vec3> geometry_edges(const Camera& camera, const RayScene& rays, con
   return points;
 }
 
-// The camera's nine degrees of freedom about a base camera, in physical
+// The camera's ten degrees of freedom about a base camera, in physical
 // units: a turn about its right, up and forward axes (radians), a move
-// along them (m), the log of the change of tan(vfov/2), and the shift of the
-// principal point (fractions of the width and height).
-using Params = Eigen::Matrix<double, 9, 1>;
+// along them (m), the log of the change of tan(vfov/2), the shift of the
+// principal point (fractions of the width and height) and the change of the
+// lens's distortion k1. A change of k1 alone would move every point out
+// or in, as a change of the field of view does, and the solve would crawl
+// along the valley between them: it comes with the field of view's change
+// that keeps points at `pivot_r2` (the edge points' mean square radius, in
+// focal lengths) where they were.
+constexpr int kParams = 10;
+using Params = Eigen::Matrix<double, kParams, 1>;
 
-CameraSpec moved_camera(const Camera& base, const Params& p) {
+CameraSpec moved_camera(const Camera& base, const Params& p, double pivot_r2) {
   const CameraSpec& b = base.spec();
   const Vec3 forward = base.forward();
   const Vec3 right = forward.cross(b.up).normalized();
@@ -112,8 +118,10 @@ CameraSpec moved_camera(const Camera& base, const Params& p) {
   s.position = b.position + float(p[3]) * right + float(p[4]) * up + float(p[5]) * forward;
   s.look_at = s.position + turn * (b.look_at - b.position);
   s.up = turn * b.up;
-  s.vfov_deg = 2.0f * std::atan(std::tan(radians(b.vfov_deg) * 0.5f) * std::exp(float(p[6]))) * 180.0f / kPi;
+  s.vfov_deg =
+      2.0f * std::atan(std::tan(radians(b.vfov_deg) * 0.5f) * std::exp(float(p[6] + p[9] * pivot_r2))) * 180.0f / kPi;
   s.principal_point = b.principal_point + Vec2(float(p[7]), float(p[8]));
+  s.distortion.x() = b.distortion.x() + float(p[9]);
   return s;
 }
 
@@ -134,30 +142,43 @@ class LevelSolve {
       : base_(base), points_(points), field_(field), cap_(cap) {
     const double s = field.scale, f = 0.5 * base.height() / std::tan(radians(base.spec().vfov_deg) * 0.5);
     std::vector<float> depths;
-    for (const Vec3& p : points) depths.push_back((p - base.position()).dot(base.forward()));
+    double r2_sum = 0.0;
+    for (const Vec3& p : points) {
+      const Vec3 d = p - base.position();
+      depths.push_back(d.dot(base.forward()));
+      r2_sum += (std::pow(d.dot(base.forward().cross(base.spec().up).normalized()), 2) +
+                 std::pow(d.dot(base.forward().cross(base.spec().up).normalized().cross(base.forward())), 2)) /
+                std::pow(std::max(1e-6f, depths.back()), 2);
+    }
+    pivot_r2_ = points.empty() ? 0.0 : r2_sum / double(points.size());
     std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
     const double depth = depths.empty() ? 1.0 : std::max(0.01f, depths[depths.size() / 2]);
+    // k1 moves a point at radius r (focal lengths) by k1 r^3 focal lengths:
+    // a unit moves the corners by a pixel.
+    const double corner = std::hypot(0.5 * base.width(), 0.5 * base.height()) / f;
     unit_ << s / f, s / f, s / (0.5 * base.width()), s / f * depth, s / f * depth, s / (0.5 * base.width()) * depth,
-        s / (0.5 * base.height()), s / base.width(), s / base.height();
+        s / (0.5 * base.height()), s / base.width(), s / base.height(), s / (f * std::pow(corner, 3));
     refine_position_ = options.refine_position;
+    refine_distortion_ = options.refine_distortion;
     // The priors' weights: a move of sigma costs what every point one pixel off does.
     const double n = double(points.size());
     prior_.setZero();
     for (int k = 3; k < 6; ++k) prior_[k] = n * std::pow(unit_[k] / options.position_sigma_m, 2);
     prior_[7] = n * std::pow(unit_[7] / options.principal_point_sigma, 2);
     prior_[8] = n * std::pow(unit_[8] * base.height() / (base.width() * options.principal_point_sigma), 2);
+    prior_[9] = n * std::pow(unit_[9] / options.distortion_sigma, 2);
   }
 
   Params solve(int max_iterations) {
-    Eigen::Matrix<double, 9, 1> z = Eigen::Matrix<double, 9, 1>::Zero();
+    Params z = Params::Zero();
     double lambda = 1e-3;
     Eigen::VectorXd r = residuals(z);
     double cost = total_cost(r, z);
     for (int it = 0; it < max_iterations; ++it) {
       // The Jacobian by central differences, half a unit (~half a pixel) each way.
-      Eigen::Matrix<double, Eigen::Dynamic, 9> jac(r.size(), 9);
+      Eigen::Matrix<double, Eigen::Dynamic, kParams> jac(r.size(), kParams);
       jac.setZero();
-      for (int k = 0; k < 9; ++k) {
+      for (int k = 0; k < kParams; ++k) {
         if (!active(k)) continue;
         Params dz = Params::Zero();
         dz[k] = 0.5;
@@ -165,15 +186,15 @@ class LevelSolve {
       }
       Eigen::VectorXd w(r.size());
       for (Eigen::Index i = 0; i < r.size(); ++i) w[i] = robust_weight(std::abs(r[i]), kDelta, cap_);
-      Eigen::Matrix<double, 9, 9> a = jac.transpose() * w.asDiagonal() * jac;
-      Eigen::Matrix<double, 9, 1> g = jac.transpose() * w.cwiseProduct(r);
+      Eigen::Matrix<double, kParams, kParams> a = jac.transpose() * w.asDiagonal() * jac;
+      Params g = jac.transpose() * w.cwiseProduct(r);
       a.diagonal() += prior_;
       g += prior_.cwiseProduct(z);
-      for (int k = 0; k < 9; ++k)
+      for (int k = 0; k < kParams; ++k)
         if (!active(k)) a.row(k).setZero(), a.col(k).setZero(), a(k, k) = 1.0, g[k] = 0.0;
       bool stepped = false;
       while (lambda < 1e8) {
-        Eigen::Matrix<double, 9, 9> damped = a;
+        Eigen::Matrix<double, kParams, kParams> damped = a;
         damped.diagonal() += lambda * (a.diagonal().array() + 1e-6).matrix();
         const Params next = z - damped.ldlt().solve(g);
         const Eigen::VectorXd rn = residuals(next);
@@ -190,6 +211,8 @@ class LevelSolve {
     return unit_.cwiseProduct(z);
   }
 
+  CameraSpec moved(const Params& p) const { return moved_camera(base_, p, pivot_r2_); }
+
   // The mean capped distance of the points through the base camera moved by p.
   double mean_distance(const Params& p) const {
     const Eigen::VectorXd r = residuals(p.cwiseQuotient(unit_));
@@ -198,10 +221,13 @@ class LevelSolve {
 
  private:
   static constexpr double kDelta = 1.0;  // Huber's delta: a pixel of the level
-  bool active(int k) const { return refine_position_ || k < 3 || k > 5; }
+  bool active(int k) const {
+    if (k >= 3 && k <= 5) return refine_position_;
+    return k != 9 || refine_distortion_;
+  }
 
   Eigen::VectorXd residuals(const Params& z) const {
-    const Camera camera(moved_camera(base_, unit_.cwiseProduct(z)), base_.width(), base_.height());
+    const Camera camera(moved(unit_.cwiseProduct(z)), base_.width(), base_.height());
     Eigen::VectorXd r(points_.size());
     for (size_t i = 0; i < points_.size(); ++i) {
       const auto q = camera.project(points_[i]);
@@ -221,8 +247,9 @@ class LevelSolve {
   const EdgeField& field_;
   float cap_;
   Params unit_;
-  bool refine_position_ = true;
+  bool refine_position_ = true, refine_distortion_ = true;
   Params prior_;
+  double pivot_r2_ = 0.0;
 };
 
 // The levels, coarsest first: the pyramid level and the distance cap in its
@@ -234,6 +261,11 @@ struct Level {
   int rounds;
 };
 constexpr Level kLevels[] = {{3, 4.0f, 2}, {2, 4.0f, 2}, {1, 4.0f, 2}, {0, 4.0f, 2}};
+
+// The share by which a free k1 must lower the edge mismatch to be kept:
+// the pinhole public scenes' moves by 0.7 % or less (docs/benchmarks.md,
+// "A lens's distortion"), a lens's 5 % barrel by 3-10 %.
+constexpr double kDistortionGain = 0.02;
 
 double mismatch_px(const std::vector<Vec3>& points, const Camera& camera, const EdgeField& full) {
   double sum = 0.0;
@@ -258,6 +290,27 @@ void check_range(const RegistrationResult& r, const Scene& scene, const Registra
   if (shift > o.max_principal_point_shift)
     refuse("shift the principal point", 100 * shift, 100 * o.max_principal_point_shift, "% of the width");
   if (r.moved_m() > o.max_move_m) refuse("move the camera", 100 * r.moved_m(), 100 * o.max_move_m, "cm");
+  const float bent = std::abs(r.after.distortion.x() - r.before.distortion.x());
+  if (bent > o.max_distortion_change) refuse("change the lens's distortion k1 by", bent, o.max_distortion_change, "");
+}
+
+// The levels' solves from `start`, coarse to fine, each round on the
+// geometry's edges seen through the camera so far (`points` the start's).
+Camera refine_over_levels(const Camera& start, const RayScene& rays, const std::vector<EdgeField>& fields,
+                          const RegistrationOptions& options, std::vector<Vec3>& points, const std::string& file,
+                          Progress& progress) {
+  Camera camera = start;
+  for (const Level& level : kLevels)
+    for (int round = 0; round < level.rounds; ++round) {
+      if (round > 0 || &level != &kLevels[0]) points = geometry_edges(camera, rays, file);
+      LevelSolve solve(camera, points, fields[size_t(level.pyramid)], level.cap, options);
+      const Params p = solve.solve(30);
+      spdlog::info("register: level {} round {}: {} edge points, mean distance {:.3f} -> {:.3f} px", level.pyramid,
+                   round, points.size(), solve.mean_distance(Params::Zero()), solve.mean_distance(p));
+      camera = Camera(solve.moved(p), camera.width(), camera.height());
+      progress.advance();
+    }
+  return camera;
 }
 
 }  // namespace
@@ -284,9 +337,12 @@ float RegistrationResult::moved_m() const { return (after.position - before.posi
 std::string RegistrationResult::what_moved(int width, int height) const {
   const Vec2 shift = principal_point_shift_px(width, height);
   return fmt::format(
-      "turned {:.3g} degrees, moved {:.3g} cm, vfov {:.4g} -> {:.4g} degrees ({:+.2f} %), principal point shifted "
-      "{:+.2f} {:+.2f} px",
-      turned_deg(), 100.0f * moved_m(), before.vfov_deg, after.vfov_deg, 100.0f * fov_change(), shift.x(), shift.y());
+             "turned {:.3g} degrees, moved {:.3g} cm, vfov {:.4g} -> {:.4g} degrees ({:+.2f} %), principal point "
+             "shifted "
+             "{:+.2f} {:+.2f} px",
+             turned_deg(), 100.0f * moved_m(), before.vfov_deg, after.vfov_deg, 100.0f * fov_change(), shift.x(),
+             shift.y()) +
+         fmt::format(", distortion k1 {:.3g} -> {:.3g}", before.distortion.x(), after.distortion.x());
 }
 
 std::vector<std::string> describe_registration(const RegistrationResult& r, int width, int height) {
@@ -337,20 +393,37 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
         fmt::format("the geometry shows only {} edge pixels: too few to register the camera by", points.size()));
   result.mismatch_before_px = mismatch_px(points, scene.camera, fields.front());
 
+  // A pinhole first (the given distortion held), then with the lens's k1
+  // free, kept where it meets the photo visibly better: on a pinhole photo
+  // a free k1 trades against the field of view within the edges' noise.
+  // Each from the given camera (from the pinhole's match, the field of view
+  // has already taken what it can of the distortion), k1 from the given and
+  // from a wide lens's barrel, the better kept: the finer levels' capped
+  // edges hold k1 in the nearer of two valleys.
+  constexpr float kBarrelStart = -0.1f;
+  const bool fit_distortion = options.refine_distortion;
   int rounds = 0;
   for (const Level& l : kLevels) rounds += l.rounds;
-  progress.begin("register: matching the geometry's edges to the photo's", rounds);
-  Camera camera = scene.camera;
-  for (const Level& level : kLevels)
-    for (int round = 0; round < level.rounds; ++round) {
-      if (round > 0 || &level != &kLevels[0]) points = geometry_edges(camera, rays, file);
-      LevelSolve solve(camera, points, fields[size_t(level.pyramid)], level.cap, options);
-      const Params p = solve.solve(30);
-      spdlog::info("register: level {} round {}: {} edge points, mean distance {:.3f} -> {:.3f} px", level.pyramid,
-                   round, points.size(), solve.mean_distance(Params::Zero()), solve.mean_distance(p));
-      camera = Camera(moved_camera(camera, p), camera.width(), camera.height());
-      progress.advance();
-    }
+  progress.begin("register: matching the geometry's edges to the photo's", fit_distortion ? 3 * rounds : rounds);
+  const auto register_from = [&](const CameraSpec& start, bool free_k1) {
+    RegistrationOptions o = options;
+    o.refine_distortion = free_k1;
+    const Camera from(start, scene.camera.width(), scene.camera.height());
+    std::vector<Vec3> start_points = start.distortion == result.before.distortion ? points : std::vector<Vec3>{};
+    if (start_points.empty()) start_points = geometry_edges(from, rays, file);
+    const Camera to = refine_over_levels(from, rays, fields, o, start_points, file, progress);
+    return std::pair{to, mismatch_px(geometry_edges(to, rays, file), to, fields.front())};
+  };
+  auto [camera, mismatch] = register_from(result.before, false);
+  if (fit_distortion) {
+    CameraSpec barrel = result.before;
+    barrel.distortion.x() += kBarrelStart;
+    auto [bent, bent_mismatch] = register_from(result.before, true);
+    if (const auto [c, m] = register_from(barrel, true); m < bent_mismatch) bent = c, bent_mismatch = m;
+    spdlog::info("register: with the lens's distortion k1 {:.4f}: edge mismatch {:.3f} px, {:.3f} px without",
+                 bent.spec().distortion.x(), bent_mismatch, mismatch);
+    if (bent_mismatch < (1.0 - kDistortionGain) * mismatch) camera = bent;
+  }
   progress.end();
 
   points = geometry_edges(camera, rays, file);

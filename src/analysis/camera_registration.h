@@ -4,7 +4,8 @@
 // (silhouettes, depth steps and creases, where neighbouring G-buffer pixels
 // see different surfaces) are points on the surfaces; the photo's edges
 // (Canny on log luminance) a distance field. The camera (orientation,
-// position, vertical field of view, principal point) is moved so that the
+// position, vertical field of view, principal point, the lens's radial
+// distortion k1) is moved so that the
 // projected edge points fall on the photo's edges: robust least squares
 // (Huber, capped: the photo's shadow and texture edges the geometry lacks
 // and the geometry's edges the photo does not show cost a constant),
@@ -39,7 +40,13 @@ struct RegistrationOptions {
   // over a few pixels: the given principal point (most photos are uncropped)
   // decides between them.
   float principal_point_sigma = 0.005f;
+  // The lens's radial distortion k1 is fitted too (a wide lens bends the
+  // corners' edges by several pixels), its prior a typical lens's: most
+  // lie within +-0.1.
+  float distortion_sigma = 1.0f;
+  float max_distortion_change = 0.25f;
   bool refine_position = true;
+  bool refine_distortion = true;
 };
 
 struct RegistrationResult {

@@ -25,7 +25,7 @@ namespace {
 struct RegisterArgs {
   std::string scene, out;
   RegistrationOptions options;
-  bool fixed_position = false;
+  bool fixed_position = false, pinhole = false;
 };
 
 void run_register(const RegisterArgs& args, Progress& progress) {
@@ -34,6 +34,7 @@ void run_register(const RegisterArgs& args, Progress& progress) {
   LoadedScene s = load_for_analysis(args.scene, load, progress);
   RegistrationOptions options = args.options;
   options.refine_position = !args.fixed_position;
+  options.refine_distortion = !args.pinhole;
   register_and_report(s.scene, *s.rays, options, progress);
   const fs::path out = fs::absolute(args.out);
   write_text_atomically(out, scene_to_json(s.scene, out.parent_path()));
@@ -63,11 +64,13 @@ void add_register_command(CLI::App& app, Action& action) {
       ->check(CLI::Range(0.0f, 10.0f))
       ->capture_default_str();
   cmd->add_flag("--fixed-position", args->fixed_position,
-                "keep the camera's position; refine only its orientation, vfov_deg and principal point");
+                "keep the camera's position; refine only its orientation, vfov_deg, principal point and distortion");
+  cmd->add_flag("--pinhole", args->pinhole, "keep the lens's distortion as given (none unless camera.distortion says)");
   cmd->footer(help_footer(
       "The photo's edges (Canny on log luminance) and the geometry's (silhouettes, depth steps, creases) are\n"
-      "  matched coarse to fine: the camera's orientation, position, vfov_deg and principal point move so that\n"
-      "  the geometry's edges fall on the photo's. A camera that would have to move further than the --max-*\n"
+      "  matched coarse to fine: the camera's orientation, position, vfov_deg, principal point and the lens's\n"
+      "  radial distortion k1 move so that the geometry's edges fall on the photo's. A camera that would have to move "
+      "further than the --max-*\n"
       "  limits is refused (exit 2, nothing written): the match is wrong, not small. Writes a complete scene.json.",
       {{"relight register scene.json -o scene_registered.json", "refine the camera of a hand-made camera match"},
        {"relight register scene.json --fixed-position -o scene_registered.json",

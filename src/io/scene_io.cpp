@@ -190,7 +190,16 @@ void read_camera_checks_and_extras(const JsonReader& r, const json& v, const std
     c.principal_point = Vec2(r.number((*pp)[0], pp_ptr + "/0", -10.0f, 10.0f), r.number((*pp)[1], pp_ptr + "/1", -10.0f, 10.0f));
   }
   if (auto* aspect = r.optional(v, "aspect")) c.aspect = r.number(*aspect, ptr + "/aspect", 1e-3f, 1e3f);
-  r.warn_unknown_keys(v, ptr, {"position", "look_at", "up", "vfov_deg", "principal_point", "from_geometry", "aspect"});
+  if (auto* k = r.optional(v, "distortion")) {
+    const std::string k_ptr = ptr + "/distortion";
+    if (!k->is_array() || k->empty() || k->size() > 2)
+      r.fail(k_ptr,
+             "expected [k1] or [k1, k2], the lens's radial distortion (OpenCV's and Blender's polynomial model)");
+    c.distortion.x() = r.number((*k)[0], k_ptr + "/0", -1.0f, 1.0f);
+    if (k->size() == 2) c.distortion.y() = r.number((*k)[1], k_ptr + "/1", -1.0f, 1.0f);
+  }
+  r.warn_unknown_keys(
+      v, ptr, {"position", "look_at", "up", "vfov_deg", "principal_point", "from_geometry", "aspect", "distortion"});
 }
 
 CameraSpec parse_camera(const JsonReader& r, const json& v, GeometryContents& geometry) {
@@ -468,6 +477,17 @@ void check_photo_aspect(const fs::path& photo_path, const Image& photo, const Ca
                                photo_aspect, photo.width, photo.height, camera.aspect, turned));
 }
 
+// A distortion that bends back within the photo (a sign or unit mistaken:
+// k1 of -0.5 on a wide lens) would show one ray at two pixels.
+void check_distortion(const fs::path& scene_path, const Camera& camera) {
+  if (!camera.distortion_folds()) return;
+  const Vec2 k = camera.spec().distortion;
+  throw InputError(scene_path.string(), "/camera/distortion",
+                   fmt::format("k1 {:g}, k2 {:g} bend the image back on itself before the photo's corners: expected "
+                               "OpenCV's or Blender's polynomial coefficients, on coordinates in focal lengths",
+                               k.x(), k.y()));
+}
+
 }  // namespace
 
 CameraSpec camera_from_json(const JsonReader& r, const nlohmann::json& v, const std::string& ptr) {
@@ -487,6 +507,7 @@ nlohmann::json camera_to_json(const CameraSpec& c) {
   if (c.principal_point != Vec2(0.5f, 0.5f))
     j["principal_point"] = json::array({c.principal_point.x(), c.principal_point.y()});
   if (c.aspect > 0.0f) j["aspect"] = c.aspect;
+  if (c.distortion != Vec2::Zero()) j["distortion"] = json::array({c.distortion.x(), c.distortion.y()});
   return j;
 }
 
@@ -529,6 +550,7 @@ Scene load_shot_frame(const Scene& scene, size_t index) {
   still.photo = read_image(frame.photo_path, &still.photo_clipped);
   check_photo_aspect(frame.photo_path, still.photo, frame.camera);
   still.camera = Camera(frame.camera, still.photo.width, still.photo.height);
+  check_distortion(scene.path, still.camera);
   return still;
 }
 
@@ -573,6 +595,7 @@ Scene load_scene(const fs::path& path, const Progress& progress) {
   scene.photo = read_image(scene.photo_path, &scene.photo_clipped);
   check_photo_aspect(scene.photo_path, scene.photo, camera);
   scene.camera = Camera(camera, scene.photo.width, scene.photo.height);
+  check_distortion(path, scene.camera);
   scene.mesh = load_mesh(scene.geometry_path, progress);
   if (scene.reference) check_reference_object(r, *scene.reference, scene.geometry_path, scene.mesh);
   check_material_names(r, materials, scene.geometry_path, scene.mesh);

@@ -22,6 +22,12 @@ struct CameraSpec {
   // glTF camera's aspectRatio, scene.json's optional camera.aspect); 0 where
   // nothing says. A photo of another shape was cropped or resized since.
   float aspect = 0.0f;
+  // The lens's radial distortion (k1, k2): a ray at position u on the image
+  // plane one focal length from the lens, about the principal point, shows
+  // at u (1 + k1 |u|^2 + k2 |u|^4); OpenCV's and Blender's polynomial model
+  // without its tangential terms. Barrel distortion (most wide lenses) has
+  // k1 < 0. Zero: a pinhole.
+  Vec2 distortion = Vec2::Zero();
 };
 
 class Camera {
@@ -41,6 +47,9 @@ class Camera {
   // The continuous image position of a world point, or nothing if it is
   // behind the camera.
   std::optional<Vec2> project(const Vec3& p) const;
+  // Whether the distortion bends back on itself within the photo (a
+  // wrong sign or unit): rays would then reach two pixels at once.
+  bool distortion_folds() const;
 
  private:
   CameraSpec spec_;
@@ -48,6 +57,12 @@ class Camera {
   Vec3 forward_, right_, up_;
   float tan_half_ = 0.0f, aspect_ = 1.0f;
   Vec2 shift_ = Vec2::Zero();  // the principal point in normalised device coordinates
+  bool distorted_ = false;
+
+  // The lens's distortion of a position on the image plane at unit focal
+  // length, and its inverse.
+  Vec2 distort(const Vec2& u) const;
+  Vec2 undistort(const Vec2& d) const;
 };
 
 }  // namespace relight
