@@ -184,6 +184,7 @@ void save_analysis(const fs::path& folder, const Analysis& a, const Scene& scene
   if (a.photo_exposure != Vec3::Ones())
     j["photo_exposure"] = {a.photo_exposure.x(), a.photo_exposure.y(), a.photo_exposure.z()};
   if (a.photo_vignetting) j["photo_vignetting"] = {{"r2", a.photo_vignetting->r2}, {"r4", a.photo_vignetting->r4}};
+  if (a.photo_blur_px > 0.0f) j["photo_blur_px"] = a.photo_blur_px;
   if (a.registered_camera) j["camera"] = camera_to_json(*a.registered_camera);
   j["filled_pixels"] = a.albedo.filled;
   nlohmann::json triangles = nlohmann::json::array();
@@ -255,6 +256,8 @@ Analysis load_analysis(const fs::path& folder, const Scene& scene) {
     a.photo_vignetting = Vignetting{r.number(r.required(*v, "/photo_vignetting", "r2"), "/photo_vignetting/r2"),
                                     r.number(r.required(*v, "/photo_vignetting", "r4"), "/photo_vignetting/r4")};
   }
+  if (const nlohmann::json* blur = r.optional(j, "photo_blur_px"))
+    a.photo_blur_px = r.number(*blur, "/photo_blur_px", 0.0f);
   if (const nlohmann::json* camera = r.optional(j, "camera"))
     a.registered_camera = camera_from_json(r, *camera, "/camera");
   const uint64_t width = r.unsigned_integer(r.required(j, "", "width"), "/width");

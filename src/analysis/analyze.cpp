@@ -4,6 +4,7 @@
 
 #include "analysis/camera_registration.h"
 #include "analysis/illumination_alignment.h"
+#include "analysis/photo_blur.h"
 #include "analysis/photo_radiance.h"
 #include "analysis/probe_exposure.h"
 #include "analysis/radiosity_illumination.h"
@@ -458,7 +459,22 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   // to where the photo shows them (a camera a few pixels off). Moved or not,
   // the pixels where they disagree are marked.
   const IlluminationAlignment alignment(scene.photo);
-  const auto divide = [&](const IlluminationImages& illumination) {
+  // The photo's softness against the render, measured on the first
+  // illumination and matched by every division (photo_blur.h).
+  std::optional<PhotoBlur> blur;
+  const auto divide = [&](const IlluminationImages& sharp) {
+    if (!blur) {
+      blur = measure_photo_blur(photo, sharp, gbuffer);
+      result.photo_blur_px = blur->sigma_px;
+      if (blur->sigma_px > 0.0f)
+        spdlog::info(
+            "the photo is softer than the render (a Gaussian blur of {:.2f} px): the illumination is blurred alike "
+            "before the division (the albedo's roughness by its edges {:.3f} -> {:.3f}, over {} pixels)",
+            blur->sigma_px, blur->roughness_sharp, blur->roughness_blurred, blur->edge_pixels);
+    }
+    std::optional<IlluminationImages> blurred;
+    if (blur->sigma_px > 0.0f) blurred = blur_illumination(sharp, gbuffer, blur->sigma_px);
+    const IlluminationImages& illumination = blurred ? *blurred : sharp;
     AlbedoImages albedo;
     IlluminationAlignment::Mismatch mismatch;
     if (options.align_edges) {

@@ -109,6 +109,10 @@ struct Analysis {
   // The photo's vignetting where found (vignetting.h): divided out of it
   // before the exposure.
   std::optional<Vignetting> photo_vignetting;
+  // How much softer the photo is than the render, where found (a Gaussian's
+  // standard deviation, pixels; photo_blur.h): the illumination divided by
+  // was blurred alike.
+  float photo_blur_px = 0.0f;
   // The camera the analysis saw the scene through where it is not the
   // scene's: registered to the photo (register_when_off). Every render of
   // the analysis takes it.

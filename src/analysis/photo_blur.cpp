@@ -1,0 +1,98 @@
+#include "analysis/photo_blur.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "analysis/photo_edges.h"
+
+namespace relight {
+
+namespace {
+
+constexpr float kEdgeStep = 0.3f;  // in log luminance between neighbours
+constexpr int kEdgeReach = 2;      // pixels either side of the step
+constexpr float kCandidates[] = {0.5f, 0.75f, 1.0f, 1.5f, 2.0f};
+
+// The pixels near a step of the illumination's log luminance that the
+// geometry covers.
+cv::Mat edge_band(const Image& surface, const GBuffer& g) {
+  const cv::Mat l = log_luminance(surface);
+  cv::Mat step(l.size(), CV_8U, cv::Scalar(0));
+  for (int y = 0; y < l.rows; ++y)
+    for (int x = 0; x < l.cols; ++x) {
+      const float v = l.at<float>(y, x);
+      const bool right = x + 1 < l.cols && std::abs(l.at<float>(y, x + 1) - v) > kEdgeStep;
+      const bool below = y + 1 < l.rows && std::abs(l.at<float>(y + 1, x) - v) > kEdgeStep;
+      if (right || below) step.at<uint8_t>(y, x) = 1;
+    }
+  cv::Mat band;
+  cv::dilate(step, band, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * kEdgeReach + 1, 2 * kEdgeReach + 1)));
+  for (int y = 0; y < l.rows; ++y)
+    for (int x = 0; x < l.cols; ++x)
+      if (g.coverage(x, y) < 0.5f) band.at<uint8_t>(y, x) = 0;
+  return band;
+}
+
+// The median over `band` of |log albedo| steps to the right and below.
+float roughness(const cv::Mat& log_photo, const Image& surface, const cv::Mat& band) {
+  const cv::Mat log_albedo = log_photo - log_luminance(surface);
+  std::vector<float> steps;
+  for (int y = 0; y + 1 < band.rows; ++y)
+    for (int x = 0; x + 1 < band.cols; ++x)
+      if (band.at<uint8_t>(y, x)) {
+        const float v = log_albedo.at<float>(y, x);
+        steps.push_back(std::abs(log_albedo.at<float>(y, x + 1) - v) + std::abs(log_albedo.at<float>(y + 1, x) - v));
+      }
+  if (steps.empty()) return 0.0f;
+  std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+  return steps[steps.size() / 2];
+}
+
+}  // namespace
+
+Image gaussian_blur(const Image& image, float sigma_px) {
+  if (!(sigma_px > 0.0f)) return image;
+  cv::Mat m(image.height, image.width, CV_32FC3, const_cast<Vec3*>(image.pixels.data()));
+  Image out(image.width, image.height);
+  cv::Mat blurred(out.height, out.width, CV_32FC3, out.pixels.data());
+  cv::GaussianBlur(m, blurred, cv::Size(0, 0), sigma_px, sigma_px, cv::BORDER_REPLICATE);
+  return out;
+}
+
+IlluminationImages blur_illumination(const IlluminationImages& illumination, const GBuffer& g, float sigma_px) {
+  const int w = illumination.surface.width, h = illumination.surface.height;
+  Image surface(w, h), background(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float c = g.coverage(x, y);
+      surface.at(x, y) = c * illumination.surface.at(x, y);
+      background.at(x, y) = (1.0f - c) * illumination.background.at(x, y);
+    }
+  surface = gaussian_blur(surface, sigma_px), background = gaussian_blur(background, sigma_px);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float c = g.coverage(x, y);
+      surface.at(x, y) = c > 0.0f ? Vec3(surface.at(x, y) / c) : Vec3::Zero();
+      background.at(x, y) = c < 1.0f ? Vec3(background.at(x, y) / (1.0f - c)) : Vec3::Zero();
+    }
+  return {std::move(surface), std::move(background)};
+}
+
+PhotoBlur measure_photo_blur(const Image& photo, const IlluminationImages& illumination, const GBuffer& g) {
+  PhotoBlur blur;
+  const cv::Mat band = edge_band(illumination.surface, g);
+  blur.edge_pixels = size_t(cv::countNonZero(band));
+  if (blur.edge_pixels == 0) return blur;
+  const cv::Mat log_photo = log_luminance(photo);
+  blur.roughness_sharp = blur.roughness_blurred = roughness(log_photo, illumination.surface, band);
+  float best = blur.roughness_sharp, best_sigma = 0.0f;
+  for (const float sigma : kCandidates) {
+    const float r = roughness(log_photo, blur_illumination(illumination, g, sigma).surface, band);
+    if (r < best) best = r, best_sigma = sigma;
+  }
+  if (best < (1.0f - kSofterShare) * blur.roughness_sharp) blur.sigma_px = best_sigma, blur.roughness_blurred = best;
+  return blur;
+}
+
+}  // namespace relight
