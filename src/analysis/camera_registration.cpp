@@ -141,14 +141,14 @@ class LevelSolve {
              const RegistrationOptions& options)
       : base_(base), points_(points), field_(field), cap_(cap) {
     const double s = field.scale, f = 0.5 * base.height() / std::tan(radians(base.spec().vfov_deg) * 0.5);
+    const Vec3 right = base.forward().cross(base.spec().up).normalized(), up = right.cross(base.forward());
     std::vector<float> depths;
-    double r2_sum = 0.0;
+    double r2_sum = 0.0;  // the points' square radii on the image plane, in focal lengths
     for (const Vec3& p : points) {
       const Vec3 d = p - base.position();
-      depths.push_back(d.dot(base.forward()));
-      r2_sum += (std::pow(d.dot(base.forward().cross(base.spec().up).normalized()), 2) +
-                 std::pow(d.dot(base.forward().cross(base.spec().up).normalized().cross(base.forward())), 2)) /
-                std::pow(std::max(1e-6f, depths.back()), 2);
+      const float depth = std::max(1e-6f, d.dot(base.forward()));
+      depths.push_back(depth);
+      r2_sum += (Vec2(d.dot(right), d.dot(up)) / depth).squaredNorm();
     }
     pivot_r2_ = points.empty() ? 0.0 : r2_sum / double(points.size());
     std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());

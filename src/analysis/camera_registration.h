@@ -41,8 +41,10 @@ struct RegistrationOptions {
   // decides between them.
   float principal_point_sigma = 0.005f;
   // The lens's radial distortion k1 is fitted too (a wide lens bends the
-  // corners' edges by several pixels), its prior a typical lens's: most
-  // lie within +-0.1.
+  // corners' edges by several pixels). Its prior only keeps it within
+  // reason (most lenses lie within +-0.1): a tighter one held a 5 % barrel
+  // at 1 % (docs/benchmarks.md, "A lens's distortion"); a pinhole photo is
+  // kept a pinhole by the choice between the two fits instead.
   float distortion_sigma = 1.0f;
   float max_distortion_change = 0.25f;
   bool refine_position = true;
