@@ -397,9 +397,10 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
   // free, kept where it meets the photo visibly better: on a pinhole photo
   // a free k1 trades against the field of view within the edges' noise.
   // Each from the given camera (from the pinhole's match, the field of view
-  // has already taken what it can of the distortion), k1 from the given and
-  // from a wide lens's barrel, the better kept: the finer levels' capped
-  // edges hold k1 in the nearer of two valleys.
+  // has already taken what it can of the distortion), k1 from the given,
+  // and where that meets the edges better than the pinhole, from a wide
+  // lens's barrel too, the better kept: the finer levels' capped edges hold
+  // k1 in the nearer of two valleys.
   constexpr float kBarrelStart = -0.1f;
   const bool fit_distortion = options.refine_distortion;
   int rounds = 0;
@@ -419,7 +420,8 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
     CameraSpec barrel = result.before;
     barrel.distortion.x() += kBarrelStart;
     auto [bent, bent_mismatch] = register_from(result.before, true);
-    if (const auto [c, m] = register_from(barrel, true); m < bent_mismatch) bent = c, bent_mismatch = m;
+    if (bent_mismatch < mismatch)  // a lens's distortion seen: its other valley too
+      if (const auto [c, m] = register_from(barrel, true); m < bent_mismatch) bent = c, bent_mismatch = m;
     spdlog::info("register: with the lens's distortion k1 {:.4f}: edge mismatch {:.3f} px, {:.3f} px without",
                  bent.spec().distortion.x(), bent_mismatch, mismatch);
     if (bent_mismatch < (1.0 - kDistortionGain) * mismatch) camera = bent;
