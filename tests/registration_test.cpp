@@ -296,7 +296,9 @@ TEST_P(ReferenceRegistration, ACameraALittleOffIsRegisteredOrItsEdgesAligned) {
   EXPECT_EQ(exact.mismatch_share, 0.0f);
   EXPECT_GT(aligned.edge_offset_px, 2.0f);
   EXPECT_GT(aligned.mismatch_share, 0.01f);
-  EXPECT_GE(aligned.psnr, off.psnr + 1.0);
+  // The kept camera's lines are softened too, the analysis taking them for
+  // a soft photo (docs/benchmarks.md, "A photo softer than the render").
+  EXPECT_GE(aligned.psnr, off.psnr + 0.4);
   EXPECT_TRUE(registered.registered);
   EXPECT_GE(registered.psnr, exact.psnr - 2.0);
 }

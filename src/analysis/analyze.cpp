@@ -457,12 +457,23 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
 
   // photo / illumination; with align_edges, the illumination's edges moved
   // to where the photo shows them (a camera a few pixels off). Moved or not,
-  // the pixels where they disagree are marked.
+  // the pixels where they disagree are marked, on the illumination as
+  // rendered; then the photo's softness against it, measured on the first
+  // illumination (after the edges are moved: a misplaced edge is not a
+  // soft one), is matched by every division (photo_blur.h).
   const IlluminationAlignment alignment(scene.photo);
-  // The photo's softness against the render, measured on the first
-  // illumination and matched by every division (photo_blur.h).
   std::optional<PhotoBlur> blur;
-  const auto divide = [&](const IlluminationImages& sharp) {
+  const auto divide = [&](const IlluminationImages& rendered) {
+    IlluminationAlignment::Mismatch mismatch;
+    std::optional<IlluminationImages> moved;
+    if (options.align_edges) {
+      IlluminationAlignment::Aligned aligned = alignment.align(rendered.surface);
+      mismatch = std::move(aligned.mismatch);
+      moved = IlluminationImages{std::move(aligned.illumination), rendered.background};
+    } else {
+      mismatch = alignment.mismatch(rendered.surface);
+    }
+    const IlluminationImages& sharp = moved ? *moved : rendered;
     if (!blur) {
       blur = measure_photo_blur(photo, sharp, gbuffer);
       result.photo_blur_px = blur->sigma_px;
@@ -472,19 +483,10 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
             "before the division (the albedo's roughness by its edges {:.3f} -> {:.3f}, over {} pixels)",
             blur->sigma_px, blur->roughness_sharp, blur->roughness_blurred, blur->edge_pixels);
     }
-    std::optional<IlluminationImages> blurred;
-    if (blur->sigma_px > 0.0f) blurred = blur_illumination(sharp, gbuffer, blur->sigma_px);
-    const IlluminationImages& illumination = blurred ? *blurred : sharp;
-    AlbedoImages albedo;
-    IlluminationAlignment::Mismatch mismatch;
-    if (options.align_edges) {
-      IlluminationAlignment::Aligned aligned = alignment.align(illumination.surface);
-      mismatch = std::move(aligned.mismatch);
-      albedo = recover_albedo(photo, unreliable, {std::move(aligned.illumination), illumination.background}, gbuffer);
-    } else {
-      mismatch = alignment.mismatch(illumination.surface);
-      albedo = recover_albedo(photo, unreliable, illumination, gbuffer);
-    }
+    AlbedoImages albedo =
+        blur->sigma_px > 0.0f
+            ? recover_albedo(photo, unreliable, blur_illumination(sharp, gbuffer, blur->sigma_px), gbuffer)
+            : recover_albedo(photo, unreliable, sharp, gbuffer);
     albedo.edge_mismatch = std::move(mismatch.moved);
     albedo.edge_offset_px = mismatch.motion_px;
     return albedo;
