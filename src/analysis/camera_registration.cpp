@@ -337,12 +337,10 @@ float RegistrationResult::moved_m() const { return (after.position - before.posi
 std::string RegistrationResult::what_moved(int width, int height) const {
   const Vec2 shift = principal_point_shift_px(width, height);
   return fmt::format(
-             "turned {:.3g} degrees, moved {:.3g} cm, vfov {:.4g} -> {:.4g} degrees ({:+.2f} %), principal point "
-             "shifted "
-             "{:+.2f} {:+.2f} px",
-             turned_deg(), 100.0f * moved_m(), before.vfov_deg, after.vfov_deg, 100.0f * fov_change(), shift.x(),
-             shift.y()) +
-         fmt::format(", distortion k1 {:.3g} -> {:.3g}", before.distortion.x(), after.distortion.x());
+      "turned {:.3g} degrees, moved {:.3g} cm, vfov {:.4g} -> {:.4g} degrees ({:+.2f} %), principal point shifted "
+      "{:+.2f} {:+.2f} px, distortion k1 {:.3g} -> {:.3g}",
+      turned_deg(), 100.0f * moved_m(), before.vfov_deg, after.vfov_deg, 100.0f * fov_change(), shift.x(), shift.y(),
+      before.distortion.x(), after.distortion.x());
 }
 
 std::vector<std::string> describe_registration(const RegistrationResult& r, int width, int height) {
@@ -406,32 +404,40 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
   int rounds = 0;
   for (const Level& l : kLevels) rounds += l.rounds;
   progress.begin("register: matching the geometry's edges to the photo's", fit_distortion ? 3 * rounds : rounds);
+  // A camera the levels reached, the geometry's edges it shows and their mismatch.
+  struct Match {
+    Camera camera;
+    std::vector<Vec3> points;
+    double mismatch;
+  };
   const auto register_from = [&](const CameraSpec& start, bool free_k1) {
     RegistrationOptions o = options;
     o.refine_distortion = free_k1;
     const Camera from(start, scene.camera.width(), scene.camera.height());
     std::vector<Vec3> start_points = start.distortion == result.before.distortion ? points : std::vector<Vec3>{};
     if (start_points.empty()) start_points = geometry_edges(from, rays, file);
-    const Camera to = refine_over_levels(from, rays, fields, o, start_points, file, progress);
-    return std::pair{to, mismatch_px(geometry_edges(to, rays, file), to, fields.front())};
+    Match m{refine_over_levels(from, rays, fields, o, start_points, file, progress), {}, 0.0};
+    m.points = geometry_edges(m.camera, rays, file);
+    m.mismatch = mismatch_px(m.points, m.camera, fields.front());
+    return m;
   };
-  auto [camera, mismatch] = register_from(result.before, false);
+  Match best = register_from(result.before, false);
   if (fit_distortion) {
     CameraSpec barrel = result.before;
     barrel.distortion.x() += kBarrelStart;
-    auto [bent, bent_mismatch] = register_from(result.before, true);
-    if (bent_mismatch < mismatch)  // a lens's distortion seen: its other valley too
-      if (const auto [c, m] = register_from(barrel, true); m < bent_mismatch) bent = c, bent_mismatch = m;
+    Match bent = register_from(result.before, true);
+    if (bent.mismatch < best.mismatch)  // a lens's distortion seen: its other valley too
+      if (Match other = register_from(barrel, true); other.mismatch < bent.mismatch) bent = std::move(other);
     spdlog::info("register: with the lens's distortion k1 {:.4f}: edge mismatch {:.3f} px, {:.3f} px without",
-                 bent.spec().distortion.x(), bent_mismatch, mismatch);
-    if (bent_mismatch < (1.0 - kDistortionGain) * mismatch) camera = bent;
+                 bent.camera.spec().distortion.x(), bent.mismatch, best.mismatch);
+    if (bent.mismatch < (1.0 - kDistortionGain) * best.mismatch) best = std::move(bent);
   }
   progress.end();
 
-  points = geometry_edges(camera, rays, file);
+  const Camera& camera = best.camera;
   result.after = camera.spec();
-  result.mismatch_after_px = mismatch_px(points, camera, fields.front());
-  result.edge_points = points.size();
+  result.mismatch_after_px = best.mismatch;
+  result.edge_points = best.points.size();
   // No better match (the given camera outside the basin, or already right):
   // the camera stays as it was.
   if (result.mismatch_after_px >= result.mismatch_before_px) {

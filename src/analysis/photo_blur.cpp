@@ -60,23 +60,29 @@ Image gaussian_blur(const Image& image, float sigma_px) {
   return out;
 }
 
+namespace {
+
+// One part of the illumination (the surface's, weighted by the coverage, or
+// the background's, by the rest) blurred with its weight and divided by the
+// pixel's own; 0 where the pixel has none of it.
+Image blur_part(const Image& part, const GBuffer& g, bool surface, float sigma_px) {
+  const auto weight = [&](int x, int y) { return surface ? g.coverage(x, y) : 1.0f - g.coverage(x, y); };
+  Image weighted(part.width, part.height);
+  for (int y = 0; y < part.height; ++y)
+    for (int x = 0; x < part.width; ++x) weighted.at(x, y) = weight(x, y) * part.at(x, y);
+  Image blurred = gaussian_blur(weighted, sigma_px);
+  for (int y = 0; y < part.height; ++y)
+    for (int x = 0; x < part.width; ++x) {
+      const float w = weight(x, y);
+      blurred.at(x, y) = w > 0.0f ? Vec3(blurred.at(x, y) / w) : Vec3::Zero();
+    }
+  return blurred;
+}
+
+}  // namespace
+
 IlluminationImages blur_illumination(const IlluminationImages& illumination, const GBuffer& g, float sigma_px) {
-  const int w = illumination.surface.width, h = illumination.surface.height;
-  Image surface(w, h), background(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const float c = g.coverage(x, y);
-      surface.at(x, y) = c * illumination.surface.at(x, y);
-      background.at(x, y) = (1.0f - c) * illumination.background.at(x, y);
-    }
-  surface = gaussian_blur(surface, sigma_px), background = gaussian_blur(background, sigma_px);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const float c = g.coverage(x, y);
-      surface.at(x, y) = c > 0.0f ? Vec3(surface.at(x, y) / c) : Vec3::Zero();
-      background.at(x, y) = c < 1.0f ? Vec3(background.at(x, y) / (1.0f - c)) : Vec3::Zero();
-    }
-  return {std::move(surface), std::move(background)};
+  return {blur_part(illumination.surface, g, true, sigma_px), blur_part(illumination.background, g, false, sigma_px)};
 }
 
 PhotoBlur measure_photo_blur(const Image& photo, const IlluminationImages& illumination, const GBuffer& g) {
@@ -88,7 +94,7 @@ PhotoBlur measure_photo_blur(const Image& photo, const IlluminationImages& illum
   blur.roughness_sharp = blur.roughness_blurred = roughness(log_photo, illumination.surface, band);
   float best = blur.roughness_sharp, best_sigma = 0.0f;
   for (const float sigma : kCandidates) {
-    const float r = roughness(log_photo, blur_illumination(illumination, g, sigma).surface, band);
+    const float r = roughness(log_photo, blur_part(illumination.surface, g, true, sigma), band);
     if (r < best) best = r, best_sigma = sigma;
   }
   if (best < (1.0f - kSofterShare) * blur.roughness_sharp) blur.sigma_px = best_sigma, blur.roughness_blurred = best;
