@@ -266,6 +266,8 @@ constexpr Level kLevels[] = {{3, 4.0f, 2}, {2, 4.0f, 2}, {1, 4.0f, 2}, {0, 4.0f,
 // the pinhole public scenes' moves by 0.7 % or less (docs/benchmarks.md,
 // "A lens's distortion"), a lens's 5 % barrel by 3-10 %.
 constexpr double kDistortionGain = 0.02;
+// The second start of k1: a wide lens's barrel.
+constexpr float kBarrelStart = -0.1f;
 
 double mismatch_px(const std::vector<Vec3>& points, const Camera& camera, const EdgeField& full) {
   double sum = 0.0;
@@ -292,6 +294,43 @@ void check_range(const RegistrationResult& r, const Scene& scene, const Registra
   if (r.moved_m() > o.max_move_m) refuse("move the camera", 100 * r.moved_m(), 100 * o.max_move_m, "cm");
   const float bent = std::abs(r.after.distortion.x() - r.before.distortion.x());
   if (bent > o.max_distortion_change) refuse("change the lens's distortion k1 by", bent, o.max_distortion_change, "");
+}
+
+// A camera the levels reached, the geometry's edges it shows and their mismatch.
+struct Match {
+  Camera camera;
+  std::vector<Vec3> points;
+  double mismatch;
+};
+
+// The pinhole's match with the lens's k1 freed at the finest level, on the
+// edges it shows, from k1 as given and from a barrel: the better camera,
+// where it lowers their mismatch by a quarter of the share a fitted k1
+// must; else none, and the levels do not run with k1 free (twice the
+// pinhole's time). On a pinhole photo this solve trades k1 against the
+// field of view within the edges' noise (the public scenes: 0.3 % at most;
+// bent 5 %: 1.7-11 %, docs/benchmarks.md "A lens's distortion"); a photo
+// it passes wrongly costs time, not the match.
+std::optional<Camera> distortion_left(const Match& pinhole, const EdgeField& full, const RegistrationOptions& options) {
+  RegistrationOptions o = options;
+  o.refine_distortion = true;
+  const float cap = std::end(kLevels)[-1].cap;
+  const int w = pinhole.camera.width(), h = pinhole.camera.height();
+  LevelSolve from_pinhole(pinhole.camera, pinhole.points, full, cap, o);
+  Params barrel = Params::Zero();
+  barrel[9] = kBarrelStart;
+  const Camera barrel_start(from_pinhole.moved(barrel), w, h);
+  LevelSolve from_barrel(barrel_start, pinhole.points, full, cap, o);
+  std::optional<Camera> best;
+  double least = (1.0 - 0.25 * kDistortionGain) * pinhole.mismatch;
+  for (LevelSolve* solve : {&from_pinhole, &from_barrel}) {
+    const Camera bent(solve->moved(solve->solve(30)), w, h);
+    const double mismatch = mismatch_px(pinhole.points, bent, full);
+    spdlog::info("register: the pinhole's match with k1 free ({:.4f}): edge mismatch {:.3f} -> {:.3f} px",
+                 bent.spec().distortion.x(), pinhole.mismatch, mismatch);
+    if (mismatch < least) best = bent, least = mismatch;
+  }
+  return best;
 }
 
 // The levels' solves from `start`, coarse to fine, each round on the
@@ -391,24 +430,23 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
         fmt::format("the geometry shows only {} edge pixels: too few to register the camera by", points.size()));
   result.mismatch_before_px = mismatch_px(points, scene.camera, fields.front());
 
-  // A pinhole first (the given distortion held), then with the lens's k1
-  // free, kept where it meets the photo visibly better: on a pinhole photo
-  // a free k1 trades against the field of view within the edges' noise.
-  // Each from the given camera (from the pinhole's match, the field of view
-  // has already taken what it can of the distortion), k1 from the given,
-  // and where that meets the edges better than the pinhole, from a wide
-  // lens's barrel too, the better kept: the finer levels' capped edges hold
-  // k1 in the nearer of two valleys.
-  constexpr float kBarrelStart = -0.1f;
+  // A pinhole first (the given distortion held), then, where its match
+  // shows a distortion left (distortion_left), the levels with the lens's
+  // k1 free, kept where they meet the photo visibly better: on a pinhole
+  // photo a free k1 trades against the field of view within the edges'
+  // noise. Each from the given camera (from the pinhole's match, the field
+  // of view has already taken what it can of the distortion), k1 from the
+  // given and from a wide lens's barrel, and the pinhole's match with k1
+  // freed at the finest level, the best kept: the finer levels' capped
+  // edges hold k1 in the nearer of two valleys.
   const bool fit_distortion = options.refine_distortion;
   int rounds = 0;
   for (const Level& l : kLevels) rounds += l.rounds;
-  progress.begin("register: matching the geometry's edges to the photo's", fit_distortion ? 3 * rounds : rounds);
-  // A camera the levels reached, the geometry's edges it shows and their mismatch.
-  struct Match {
-    Camera camera;
-    std::vector<Vec3> points;
-    double mismatch;
+  progress.begin("register: matching the geometry's edges to the photo's", rounds);
+  const auto matched = [&](const Camera& camera) {
+    Match m{camera, geometry_edges(camera, rays, file), 0.0};
+    m.mismatch = mismatch_px(m.points, m.camera, fields.front());
+    return m;
   };
   const auto register_from = [&](const CameraSpec& start, bool free_k1) {
     RegistrationOptions o = options;
@@ -416,23 +454,22 @@ RegistrationResult register_camera(Scene& scene, const RayScene& rays, const Reg
     const Camera from(start, scene.camera.width(), scene.camera.height());
     std::vector<Vec3> start_points = start.distortion == result.before.distortion ? points : std::vector<Vec3>{};
     if (start_points.empty()) start_points = geometry_edges(from, rays, file);
-    Match m{refine_over_levels(from, rays, fields, o, start_points, file, progress), {}, 0.0};
-    m.points = geometry_edges(m.camera, rays, file);
-    m.mismatch = mismatch_px(m.points, m.camera, fields.front());
-    return m;
+    return matched(refine_over_levels(from, rays, fields, o, start_points, file, progress));
   };
   Match best = register_from(result.before, false);
-  if (fit_distortion) {
+  progress.end();
+  if (const auto left = fit_distortion ? distortion_left(best, fields.front(), options) : std::nullopt) {
+    progress.begin("register: the lens's distortion", 2 * rounds);
     CameraSpec barrel = result.before;
     barrel.distortion.x() += kBarrelStart;
-    Match bent = register_from(result.before, true);
-    if (bent.mismatch < best.mismatch)  // a lens's distortion seen: its other valley too
-      if (Match other = register_from(barrel, true); other.mismatch < bent.mismatch) bent = std::move(other);
+    Match bent = matched(*left);
+    for (const CameraSpec& start : {result.before, barrel})
+      if (Match m = register_from(start, true); m.mismatch < bent.mismatch) bent = std::move(m);
     spdlog::info("register: with the lens's distortion k1 {:.4f}: edge mismatch {:.3f} px, {:.3f} px without",
                  bent.camera.spec().distortion.x(), bent.mismatch, best.mismatch);
     if (bent.mismatch < (1.0 - kDistortionGain) * best.mismatch) best = std::move(bent);
+    progress.end();
   }
-  progress.end();
 
   const Camera& camera = best.camera;
   result.after = camera.spec();
