@@ -14,7 +14,7 @@ namespace relight::gui {
 
 namespace {
 
-constexpr double kMaxStops = 20.0;
+constexpr double kMaxLightStops = 20.0;
 
 QString vec3_text(const Vec3& v, const QString& unit) {
   return QStringLiteral("%1, %2, %3%4")
@@ -76,7 +76,7 @@ LightDetails::LightDetails(QWidget* parent)
       tint_(edit_field("tint", -kMaxTint, kMaxTint, 3, 0.001,
                        tr("Off the blackbody colours: + towards green, \u2212 towards magenta (Duv, %1 at most)")
                            .arg(double(kMaxTint)))),
-      stops_(edit_field("stops", -kMaxStops, kMaxStops, 2, 1.0,
+      stops_(edit_field("stops", -kMaxLightStops, kMaxLightStops, 2, 1.0,
                         tr("Stops from the power the light had when selected: +1 doubles it, \u22121 halves it"))) {
   temperature_->setSuffix(tr(" K"));
   stops_->setSuffix(tr(" EV"));
