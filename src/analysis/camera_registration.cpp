@@ -266,6 +266,10 @@ constexpr Level kLevels[] = {{3, 4.0f, 2}, {2, 4.0f, 2}, {1, 4.0f, 2}, {0, 4.0f,
 // the pinhole public scenes' moves by 0.7 % or less (docs/benchmarks.md,
 // "A lens's distortion"), a lens's 5 % barrel by 3-10 %.
 constexpr double kDistortionGain = 0.02;
+// The share by which the probe's free k1 (distortion_left) must lower it for
+// the levels to run with k1 free: a quarter of the above, as a photo the
+// probe passes wrongly costs time, not the match.
+constexpr double kDistortionSeen = 0.25 * kDistortionGain;
 // The second start of k1: a wide lens's barrel.
 constexpr float kBarrelStart = -0.1f;
 
@@ -305,12 +309,11 @@ struct Match {
 
 // The pinhole's match with the lens's k1 freed at the finest level, on the
 // edges it shows, from k1 as given and from a barrel: the better camera,
-// where it lowers their mismatch by a quarter of the share a fitted k1
-// must; else none, and the levels do not run with k1 free (twice the
-// pinhole's time). On a pinhole photo this solve trades k1 against the
-// field of view within the edges' noise (the public scenes: 0.3 % at most;
-// bent 5 %: 1.7-11 %, docs/benchmarks.md "A lens's distortion"); a photo
-// it passes wrongly costs time, not the match.
+// where it lowers their mismatch by kDistortionSeen; else none, and the
+// levels do not run with k1 free (twice the pinhole's time). On a pinhole
+// photo this solve trades k1 against the field of view within the edges'
+// noise (the public scenes: 0.3 % at most; bent 5 %: 1.7-11 %,
+// docs/benchmarks.md "A lens's distortion").
 std::optional<Camera> distortion_left(const Match& pinhole, const EdgeField& full, const RegistrationOptions& options) {
   RegistrationOptions o = options;
   o.refine_distortion = true;
@@ -322,7 +325,7 @@ std::optional<Camera> distortion_left(const Match& pinhole, const EdgeField& ful
   const Camera barrel_start(from_pinhole.moved(barrel), w, h);
   LevelSolve from_barrel(barrel_start, pinhole.points, full, cap, o);
   std::optional<Camera> best;
-  double least = (1.0 - 0.25 * kDistortionGain) * pinhole.mismatch;
+  double least = (1.0 - kDistortionSeen) * pinhole.mismatch;
   for (LevelSolve* solve : {&from_pinhole, &from_barrel}) {
     const Camera bent(solve->moved(solve->solve(30)), w, h);
     const double mismatch = mismatch_px(pinhole.points, bent, full);
