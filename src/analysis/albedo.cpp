@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "analysis/photo_blur.h"
 
 namespace relight {
 
@@ -134,6 +137,24 @@ AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clip
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) out.albedo_coverage.at(x, y) = out.albedo.at(x, y) * g.coverage(x, y);
   return out;
+}
+
+void sharpen_albedo(AlbedoImages& albedo, const GBuffer& g, float sigma_px) {
+  if (!(sigma_px > 0.0f)) return;
+  const int w = albedo.albedo.width, h = albedo.albedo.height;
+  cv::Mat coverage_blurred;
+  cv::GaussianBlur(cv::Mat(h, w, CV_32F, const_cast<float*>(g.coverage().data())), coverage_blurred, cv::Size(0, 0),
+                   sigma_px, sigma_px, cv::BORDER_REPLICATE);
+  Image blurred(w, h);  // blur(c a)
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) blurred.at(x, y) = albedo.albedo.at(x, y) * coverage_blurred.at<float>(y, x);
+  const Image sharp = deblur(blurred, sigma_px);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float c = g.coverage(x, y);
+      if (c >= kMinCoverage) albedo.albedo.at(x, y) = (sharp.at(x, y) / c).cwiseMax(0.0f).cwiseMin(albedo.bright_bound);
+      albedo.albedo_coverage.at(x, y) = albedo.albedo.at(x, y) * c;
+    }
 }
 
 }  // namespace relight

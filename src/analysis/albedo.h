@@ -50,4 +50,12 @@ struct AlbedoImages {
 AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clipped,
                             const IlluminationImages& illumination, const GBuffer& gbuffer);
 
+// The albedo with the photo's blur of sigma_px (photo_blur.h) undone: the
+// photo is blur(c a L) + blur((1 - c) B), so where the light is even over the
+// blur's reach the division gives a = blur(c a) / blur(c); blur(c a) is
+// deconvolved (deblur) and divided by the pixel's own coverage where it is
+// at least kMinCoverage, the rest left as it was. Kept within 0 and the
+// albedo's bright bound.
+void sharpen_albedo(AlbedoImages& albedo, const GBuffer& gbuffer, float sigma_px);
+
 }  // namespace relight

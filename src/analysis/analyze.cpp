@@ -173,6 +173,37 @@ void report_edge_offset(const Scene& scene, const AlbedoImages& albedo, const st
         share);
 }
 
+// A camera's own softness (its lens, anti-aliasing filter and demosaicing)
+// is about a pixel at most. Sharpening a photo that is not soft costs far
+// more than leaving a soft one: the public scenes' albedos as rendered lose
+// 1.4-3.2 dB sharpened as if blurred by 0.5 px, 8-11 dB by 1 px, 15-18 dB by 2.
+constexpr float kMaxSharpenPx = 1.0f;
+
+// The blur to undo in the albedo (sharpen_albedo): the photo's blur measured
+// again with the illumination's edges moved onto the photo's (where
+// --align-edges has not moved them already). Edges a pixel or two off (a
+// camera kept as given, a model a centimetre off) leave a bright and a dark
+// line by each, which the measure takes for softness and the blurred
+// illumination rightly softens; sharpening the albedo by it would sharpen
+// the photo's own texture. Moved onto the photo's, they are not taken for
+// softness, and a photo that is soft is still found so.
+float blur_with_edges_met(const Image& photo, const IlluminationImages& illumination, const GBuffer& gbuffer,
+                          const PhotoBlur& blur, bool edges_moved, const IlluminationAlignment& alignment) {
+  if (blur.sigma_px > kMaxSharpenPx) {
+    spdlog::info(
+        "the albedo left as soft as the photo: a blur of {:.2f} px is more than a camera's own, and more "
+        "likely the geometry's or the lights' edges off the photo's",
+        blur.sigma_px);
+    return 0.0f;
+  }
+  if (edges_moved) return blur.sigma_px;
+  const PhotoBlur met =
+      measure_photo_blur(photo, {alignment.align(illumination.surface).illumination, illumination.background}, gbuffer);
+  if (met.sigma_px < blur.sigma_px)
+    spdlog::info("with the illumination's edges moved onto the photo's, its blur is {:.2f} px", met.sigma_px);
+  return std::min(met.sigma_px, blur.sigma_px);
+}
+
 // What brings the photo to the probes' units, from the points it shares
 // with each probe that shows the scene as it does: its vignetting
 // (vignetting.h), unless kept, then its exposure (probe_exposure.h), from
@@ -463,6 +494,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   // soft one), is matched by every division (photo_blur.h).
   const IlluminationAlignment alignment(scene.photo);
   std::optional<PhotoBlur> blur;
+  float sharpen_px = 0.0f;  // the blur undone in the final albedo
   const auto divide = [&](const IlluminationImages& rendered) {
     IlluminationAlignment::Mismatch mismatch;
     std::optional<IlluminationImages> moved;
@@ -477,11 +509,14 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     if (!blur) {
       blur = measure_photo_blur(photo, sharp, gbuffer);
       result.photo_blur_px = blur->sigma_px;
-      if (blur->sigma_px > 0.0f)
+      if (blur->sigma_px > 0.0f) {
         spdlog::info(
             "the photo is softer than the render (a Gaussian blur of {:.2f} px): the illumination is blurred alike "
             "before the division (the albedo's roughness by its edges {:.3f} -> {:.3f}, over {} pixels)",
             blur->sigma_px, blur->roughness_sharp, blur->roughness_blurred, blur->edge_pixels);
+        if (!options.keep_blur)
+          sharpen_px = blur_with_edges_met(photo, sharp, gbuffer, *blur, moved.has_value(), alignment);
+      }
     }
     AlbedoImages albedo =
         blur->sigma_px > 0.0f
@@ -579,6 +614,10 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
     back_options.paths_per_pixel = std::max(1, options.paths_per_pixel / kResidualPathsDivisor);
     const Image back = render_back(back_options, "residual").surface;
     result.residual = residual_of(photo, result.albedo.albedo, back, result.coverage);
+  }
+  if (sharpen_px > 0.0f) {
+    sharpen_albedo(result.albedo, gbuffer, sharpen_px);
+    spdlog::info("the photo's blur of {:.2f} px undone in the albedo (--keep-blur leaves it)", sharpen_px);
   }
   report_edge_offset(scene, result.albedo, result.coverage, options.align_edges);
   if (!result.albedo.as_divided.empty())

@@ -32,6 +32,15 @@ PhotoBlur measure_photo_blur(const Image& photo, const IlluminationImages& illum
 // `image` blurred by a Gaussian of standard deviation sigma_px (OpenCV's).
 Image gaussian_blur(const Image& image, float sigma_px);
 
+// `image` with a Gaussian blur of sigma_px undone as far as it can be
+// without amplifying noise: u = argmin |G u - image|^2 + k |Laplacian u|^2
+// (Tikhonov's regularisation, k = kDeblurSmoothness), solved exactly in the
+// Fourier domain (OpenCV's DFT) over the image mirrored at its borders.
+// The Laplacian's penalty leaves a region of one colour as it is and holds
+// back the fine detail a blur all but erased.
+Image deblur(const Image& image, float sigma_px);
+constexpr float kDeblurSmoothness = 0.01f;
+
 // The illumination as a photo blurred by sigma_px sees it: each pixel's
 // surface and background parts blurred with their coverage (photo =
 // blur(c a L) + blur((1 - c) B), the albedo locally constant), and divided
