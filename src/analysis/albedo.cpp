@@ -139,22 +139,44 @@ AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clip
   return out;
 }
 
-void sharpen_albedo(AlbedoImages& albedo, const GBuffer& g, float sigma_px) {
+void sharpen_albedo(AlbedoImages& albedo, const GBuffer& g, float sigma_px, int band_rows) {
   if (!(sigma_px > 0.0f)) return;
   const int w = albedo.albedo.width, h = albedo.albedo.height;
   cv::Mat coverage_blurred;
   cv::GaussianBlur(cv::Mat(h, w, CV_32F, const_cast<float*>(g.coverage().data())), coverage_blurred, cv::Size(0, 0),
                    sigma_px, sigma_px, cv::BORDER_REPLICATE);
-  Image blurred(w, h);  // blur(c a)
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) blurred.at(x, y) = albedo.albedo.at(x, y) * coverage_blurred.at<float>(y, x);
-  const Image sharp = deblur(blurred, sigma_px);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const float c = g.coverage(x, y);
-      if (c >= kMinCoverage) albedo.albedo.at(x, y) = (sharp.at(x, y) / c).cwiseMax(0.0f).cwiseMin(albedo.bright_bound);
-      albedo.albedo_coverage.at(x, y) = albedo.albedo.at(x, y) * c;
-    }
+  // In bands of rows, each deconvolved with the rows the filter reaches
+  // beyond it (deblur_reach_px), and only the band's own rows kept: the
+  // band's transforms, not the view's, are held at once. A band's rows are
+  // written back once the next band has read the albedo it reaches into
+  // (bands at least as tall as the reach: no further back than that).
+  const int reach = deblur_reach_px(sigma_px);
+  if (band_rows <= 0) band_rows = int(kSharpenBandPixels / std::max(1, w));
+  band_rows = std::max(band_rows, reach);
+  int pending_row = 0;
+  Image pending;  // the last band's sharpened rows, not yet written
+  const auto write_pending = [&] {
+    for (int y = 0; y < pending.height; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float c = g.coverage(x, pending_row + y);
+        Vec3& a = albedo.albedo.at(x, pending_row + y);
+        if (c >= kMinCoverage) a = (pending.at(x, y) / c).cwiseMax(0.0f).cwiseMin(albedo.bright_bound);
+        albedo.albedo_coverage.at(x, pending_row + y) = a * c;
+      }
+  };
+  for (int y0 = 0; y0 < h; y0 += band_rows) {
+    const int y1 = std::min(h, y0 + band_rows), top = std::max(0, y0 - reach), bottom = std::min(h, y1 + reach);
+    Image blurred(w, bottom - top);  // blur(c a)
+    for (int y = top; y < bottom; ++y)
+      for (int x = 0; x < w; ++x) blurred.at(x, y - top) = albedo.albedo.at(x, y) * coverage_blurred.at<float>(y, x);
+    write_pending();
+    const Image sharp = deblur(blurred, sigma_px);
+    pending = Image(w, y1 - y0);
+    std::copy(sharp.pixels.begin() + ptrdiff_t(y0 - top) * w, sharp.pixels.begin() + ptrdiff_t(y1 - top) * w,
+              pending.pixels.begin());
+    pending_row = y0;
+  }
+  write_pending();
 }
 
 }  // namespace relight

@@ -55,7 +55,10 @@ AlbedoImages recover_albedo(const Image& photo, const std::vector<uint8_t>& clip
 // blur's reach the division gives a = blur(c a) / blur(c); blur(c a) is
 // deconvolved (deblur) and divided by the pixel's own coverage where it is
 // at least kMinCoverage, the rest left as it was. Kept within 0 and the
-// albedo's bright bound.
-void sharpen_albedo(AlbedoImages& albedo, const GBuffer& gbuffer, float sigma_px);
+// albedo's bright bound. Done band_rows rows at a time (0: about
+// kSharpenBandPixels' worth; at least the deconvolution's reach), the same
+// to a thousandth whatever the bands.
+void sharpen_albedo(AlbedoImages& albedo, const GBuffer& gbuffer, float sigma_px, int band_rows = 0);
+inline constexpr int64_t kSharpenBandPixels = 1 << 20;
 
 }  // namespace relight

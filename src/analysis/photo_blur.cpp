@@ -64,9 +64,8 @@ Image gaussian_blur(const Image& image, float sigma_px) {
 Image deblur(const Image& image, float sigma_px) {
   if (!(sigma_px > 0.0f)) return image;
   const int w = image.width, h = image.height;
-  // The mirrored margin keeps the transform's wrap out of the filter's reach
-  // (beyond it, 0.2 % of the filter's absolute sum at 1 and 2 pixels).
-  const int pad = int(std::ceil(12.0f * sigma_px)) + 4;
+  // The mirrored margin keeps the transform's wrap out of the filter's reach.
+  const int pad = deblur_reach_px(sigma_px);
   const int rows = cv::getOptimalDFTSize(h + 2 * pad), cols = cv::getOptimalDFTSize(w + 2 * pad);
   const auto frequency = [](int i, int n) { return float(i <= n / 2 ? i : i - n) / float(n); };
   const float k = kDeblurSmoothness, s2 = sigma_px * sigma_px;

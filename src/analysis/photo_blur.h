@@ -8,6 +8,8 @@
 // edges, and the illumination divided by is blurred alike.
 #pragma once
 
+#include <cmath>
+
 #include "core/image.h"
 #include "render/gbuffer.h"
 #include "render/render_illumination.h"
@@ -40,6 +42,9 @@ Image gaussian_blur(const Image& image, float sigma_px);
 // back the fine detail a blur all but erased.
 Image deblur(const Image& image, float sigma_px);
 constexpr float kDeblurSmoothness = 0.01f;
+// How far deblur reaches (and mirrors the image beyond its borders): beyond
+// it the filter's response is 0.2 % of its absolute sum at 1 and 2 pixels.
+inline int deblur_reach_px(float sigma_px) { return int(std::ceil(12.0f * sigma_px)) + 4; }
 
 // The illumination as a photo blurred by sigma_px sees it: each pixel's
 // surface and background parts blurred with their coverage (photo =
