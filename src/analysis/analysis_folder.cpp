@@ -65,7 +65,7 @@ void write_options(nlohmann::json& j, const AnalysisOptions& o) {
   if (o.align_edges) j["align_edges"] = true;
   if (o.keep_camera) j["keep_camera"] = true;
   if (o.keep_vignetting) j["keep_vignetting"] = true;
-  if (o.keep_blur) j["keep_blur"] = true;
+  if (o.sharpen) j["sharpen"] = true;
   if (o.preview) j["preview"] = true;
   if (o.method == AnalysisMethod::radiosity) {
     j["node_samples"] = o.node_samples;
@@ -103,7 +103,7 @@ AnalysisOptions read_options(const JsonReader& r, const nlohmann::json& j) {
   if (const nlohmann::json* v = r.optional(j, "align_edges")) o.align_edges = r.boolean(*v, "/align_edges");
   if (const nlohmann::json* v = r.optional(j, "keep_camera")) o.keep_camera = r.boolean(*v, "/keep_camera");
   if (const nlohmann::json* v = r.optional(j, "keep_vignetting")) o.keep_vignetting = r.boolean(*v, "/keep_vignetting");
-  if (const nlohmann::json* v = r.optional(j, "keep_blur")) o.keep_blur = r.boolean(*v, "/keep_blur");
+  if (const nlohmann::json* v = r.optional(j, "sharpen")) o.sharpen = r.boolean(*v, "/sharpen");
   if (const nlohmann::json* v = r.optional(j, "preview")) o.preview = r.boolean(*v, "/preview");
   if (o.method == AnalysisMethod::radiosity) {
     o.node_samples = count("node_samples");
@@ -145,7 +145,7 @@ std::string analysis_input_hash(const Scene& scene, const AnalysisOptions& optio
   if (options.align_edges) hash.add_text(" align-edges");  // likewise
   if (options.keep_camera) hash.add_text(" keep-camera");  // likewise
   if (options.keep_vignetting) hash.add_text(" keep-vignetting");  // likewise
-  if (options.keep_blur) hash.add_text(" keep-blur");              // likewise
+  if (options.sharpen) hash.add_text(" sharpen");                  // likewise
   if (options.indirect_stride != 1) hash.add_text(fmt::format(" indirect-stride {}", options.indirect_stride));
   // Added only for radiosity, so that path analyses made before the method
   // existed stay valid.

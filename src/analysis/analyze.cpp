@@ -514,7 +514,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
             "the photo is softer than the render (a Gaussian blur of {:.2f} px): the illumination is blurred alike "
             "before the division (the albedo's roughness by its edges {:.3f} -> {:.3f}, over {} pixels)",
             blur->sigma_px, blur->roughness_sharp, blur->roughness_blurred, blur->edge_pixels);
-        if (!options.keep_blur)
+        if (options.sharpen)
           sharpen_px = blur_with_edges_met(photo, sharp, gbuffer, *blur, moved.has_value(), alignment);
       }
     }
@@ -617,7 +617,7 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   }
   if (sharpen_px > 0.0f) {
     sharpen_albedo(result.albedo, gbuffer, sharpen_px);
-    spdlog::info("the photo's blur of {:.2f} px undone in the albedo (--keep-blur leaves it)", sharpen_px);
+    spdlog::info("the photo's blur of {:.2f} px undone in the albedo", sharpen_px);
   }
   report_edge_offset(scene, result.albedo, result.coverage, options.align_edges);
   if (!result.albedo.as_divided.empty())

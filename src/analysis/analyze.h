@@ -65,10 +65,11 @@ struct AnalysisOptions {
   // Leave the photo's vignetting in it; otherwise one measured against the
   // probes is divided out (photo_vignetting, vignetting.h).
   bool keep_vignetting = false;
-  // Leave the albedo as soft as the photo; otherwise a blur of the photo
-  // measured against the render (photo_blur.h) is undone in it
-  // (sharpen_albedo, albedo.h).
-  bool keep_blur = false;
+  // Undo in the albedo a blur of the photo measured against the render
+  // (photo_blur.h; sharpen_albedo, albedo.h). Off by default: a model whose
+  // edges differ from the photo's can pass for a soft photo, and sharpening
+  // a photo that is not soft costs more than leaving a soft one soft.
+  bool sharpen = false;
   // With method radiosity, per node (paths_per_pixel is the path tracer's):
   int node_samples = 64;  // for the light from the lights and the environment
   int gather_rays = 256;  // for the light from the other surfaces

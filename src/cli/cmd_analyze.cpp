@@ -211,11 +211,11 @@ void add_analyze_command(CLI::App& app, Action& action) {
   cmd->add_flag("--keep-vignetting", args->options.keep_vignetting,
                 "leave the photo's vignetting in it; by default a darkening towards its corners that the probes "
                 "show is not the surfaces' (5 % or more, clear of the noise) is divided out first");
-  cmd->add_flag("--keep-blur", args->options.keep_blur,
-                "leave the albedo as soft as the photo; by default a blur of the photo against the render (a lens, "
-                "a sensor: found where it makes the albedo smoother by its edges) of up to a pixel is undone in the "
-                "albedo, regularised so as not to raise the noise, unless the model's edges off the photo's account "
-                "for it");
+  cmd->add_flag("--sharpen", args->options.sharpen,
+                "undo in the albedo a blur of the photo against the render (a lens, a sensor: found where it makes "
+                "the albedo smoother by its edges) of up to a pixel, regularised so as not to raise the noise, unless "
+                "the model's edges moved onto the photo's account for it; for a photo known to be soft (a model "
+                "whose shadows or edges differ from the photo's can pass for a soft photo)");
   cmd->add_option("--indirect-stride", args->options.indirect_stride,
                   "the environment and bounce light (smooth) traced at every N-th pixel each way and interpolated "
                   "along the surfaces between; the lights' direct light is traced at every pixel. 1: every pixel; "
