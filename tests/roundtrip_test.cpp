@@ -114,14 +114,12 @@ TEST(PhotoBlur, ASofterPhotoIsFoundAndDividedByIlluminationAsSoft) {
 
   const Image soft_photo = gaussian_blur(t.scene.photo, 1.0f), soft_truth = gaussian_blur(t.albedo_gt, 1.0f);
   const PhotoBlur found = measure_photo_blur(soft_photo, sharp.illumination, gbuffer);
-  const auto albedo_db = [&](const IlluminationImages& illumination) {
-    return psnr(clip01(recover_albedo(soft_photo, {}, illumination, gbuffer).albedo_coverage), clip01(soft_truth));
-  };
-  const double divided_sharp = albedo_db(sharp.illumination),
-               divided_soft = albedo_db(blur_illumination(sharp.illumination, gbuffer, found.sigma_px));
-  // Then the blur undone in the albedo (sharpen_albedo), against the truth.
   AlbedoImages soft =
       recover_albedo(soft_photo, {}, blur_illumination(sharp.illumination, gbuffer, found.sigma_px), gbuffer);
+  const double divided_sharp =
+      psnr(clip01(recover_albedo(soft_photo, {}, sharp.illumination, gbuffer).albedo_coverage), clip01(soft_truth));
+  const double divided_soft = psnr(clip01(soft.albedo_coverage), clip01(soft_truth));
+  // Then the blur undone in the albedo (sharpen_albedo), against the truth.
   const double soft_db = psnr(clip01(soft.albedo_coverage), clip01(t.albedo_gt));
   sharpen_albedo(soft, gbuffer, found.sigma_px);
   const double sharpened_db = psnr(clip01(soft.albedo_coverage), clip01(t.albedo_gt));

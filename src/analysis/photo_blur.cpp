@@ -67,8 +67,21 @@ Image deblur(const Image& image, float sigma_px) {
   // The mirrored margin keeps the transform's wrap out of the filter's reach.
   const int pad = deblur_reach_px(sigma_px);
   const int rows = cv::getOptimalDFTSize(h + 2 * pad), cols = cv::getOptimalDFTSize(w + 2 * pad);
-  const auto frequency = [](int i, int n) { return float(i <= n / 2 ? i : i - n) / float(n); };
-  const float k = kDeblurSmoothness, s2 = sigma_px * sigma_px;
+  // The filter's gain H / (H^2 + k Lap^2) at frequency (fx, fy), from its
+  // factors along each axis: H = Hx Hy, Lap = Lx + Ly.
+  struct Axis {
+    std::vector<float> blur, laplacian;
+  };
+  const auto axis = [&](int n) {
+    Axis a{std::vector<float>(size_t(n)), std::vector<float>(size_t(n))};
+    for (int i = 0; i < n; ++i) {
+      const float f = float(i <= n / 2 ? i : i - n) / float(n), s = std::sin(kPi * f);
+      a.blur[size_t(i)] = std::exp(-2.0f * kPi * kPi * sigma_px * sigma_px * f * f);
+      a.laplacian[size_t(i)] = 4.0f * s * s;
+    }
+    return a;
+  };
+  const Axis along_x = axis(cols), along_y = axis(rows);
   std::vector<cv::Mat> channels;
   cv::split(cv::Mat(h, w, CV_32FC3, const_cast<Vec3*>(image.pixels.data())), channels);
   for (cv::Mat& channel : channels) {
@@ -77,13 +90,11 @@ Image deblur(const Image& image, float sigma_px) {
     cv::dft(padded, spectrum, cv::DFT_COMPLEX_OUTPUT);
     padded.release();
     for (int y = 0; y < rows; ++y) {
-      const float fy = frequency(y, rows), sy = std::sin(kPi * fy);
       auto* row = spectrum.ptr<cv::Vec2f>(y);
       for (int x = 0; x < cols; ++x) {
-        const float fx = frequency(x, cols), sx = std::sin(kPi * fx);
-        const float blur = std::exp(-2.0f * kPi * kPi * s2 * (fx * fx + fy * fy));
-        const float laplacian = 4.0f * (sx * sx + sy * sy);
-        row[x] *= blur / (blur * blur + k * laplacian * laplacian);
+        const float blur = along_y.blur[size_t(y)] * along_x.blur[size_t(x)];
+        const float laplacian = along_y.laplacian[size_t(y)] + along_x.laplacian[size_t(x)];
+        row[x] *= blur / (blur * blur + kDeblurSmoothness * laplacian * laplacian);
       }
     }
     cv::idft(spectrum, padded, cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
