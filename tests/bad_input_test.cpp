@@ -459,6 +459,13 @@ const std::vector<Row>& catalogue() {
       // mistakes seen in the view (src/analysis/view_checks.cpp), warned before fit and analyze
       {"LightBelowTheFloorLightsNothingInView", [](SceneFolder& f) { light(f)["position"] = {2, -2, -1}; },
        Command::analyze, "scene.json", "/lights/0 (point 0): lights nothing the camera sees", 0},
+      {"LampSphereThroughTheFloor",  // the sphere's cap below z = 0: a quarter of its surface
+       [](SceneFolder& f) {
+         light(f)["position"] = {2, -2, 0.25};
+         light(f)["radius"] = 0.5;
+       },
+       Command::analyze, "scene.json", "/lights/0 (point 0): 25 % of its sphere lies beyond a surface of the geometry",
+       0},
       {"GeometryCoversLittleOfThePhoto",
        [](SceneFolder& f) {
          f.replace_photo(Image(80, 60, Vec3(0.3f, 0.25f, 0.2f)));

@@ -120,6 +120,31 @@ TEST(FitExample, KeepsWhatTooFewShadowEdgesCannotTell) {
   EXPECT_EQ(fit.lights.front().source, "kept (scale anchor)");
 }
 
+// The bookcase's lamp given a third of its radius: its probes resolve its
+// disc, which fills what they see only three times nearer than the lamp is
+// given, so its size was wrong, not its place. The fit gives it the radius
+// that fills it where it is.
+TEST(FitReferenceSize, GivesALampGivenAThirdOfItsRadiusItsSize) {
+  const fs::path folder = relight::test::reference_scenes_folder() / "bookcase";
+  if (!fs::exists(folder / "scene.json")) GTEST_SKIP() << folder << " not found (set RELIGHT_SCENES)";
+  const Scene truth = load_scene(folder / "scene.json");
+  Scene wrong = truth;
+  Light& lamp = wrong.lights.front();
+  ASSERT_GT(lamp.radius, 0.0f);
+  lamp.radius /= 3.0f;
+  const RayScene rays(truth.mesh);
+  const GBuffer gbuffer = scene_gbuffer(truth, rays, AnalysisOptions{});
+  FitOptions options;
+  options.paths_per_pixel = 8;
+  options.rounds = 2;
+  const FitResult fit = fit_lighting(wrong, rays, gbuffer, options, Progress::silent());
+  const float radius = fit.scene.lights.front().radius, true_radius = truth.lights.front().radius;
+  std::printf("[ figures  ] bookcase lamp given radius %.4f m: fitted %.4f m (true %.4f m, x%.3f)\n", lamp.radius,
+              radius, true_radius, fit.lights.front().size_scale);
+  EXPECT_NEAR(radius / true_radius, 1.0f, 0.03f);
+  EXPECT_EQ(fit.scene.lights.front().position, truth.lights.front().position);  // not moved
+}
+
 // The bookcase's soft lamp casts too few sharp shadows to fit the background
 // from; it comes from the probe's mean radiance, which sees only part of the
 // room's environment (the rest is behind the wall and floor, and filled from

@@ -202,6 +202,32 @@ TEST(ProbeLights, RemovalLeavesOnlyTheEnvironment) {
   for (const auto& p : clean.image.pixels) ASSERT_NEAR(p.x(), 0.3f, 1e-4f);
 }
 
+// A light given a quarter of its size: its region is what the probe shows
+// of it, not what was given. Its rim would otherwise stay in the probe, and
+// the photo's radiance bounce it as the wall's behind it.
+TEST(ProbeLights, ALightGivenTooSmallIsFoundWhole) {
+  const Light panel = ceiling_panel(Vec3(0.2f, 0.3f, 1.1f));
+  const Vec3 lamp(-1.0f, 0.5f, 1.2f);
+  Light small_panel = panel, small_lamp;
+  small_panel.size *= 0.25f;
+  small_lamp.position = lamp;
+  small_lamp.radius = 0.03f;  // of 0.12
+  small_lamp.power = 100.0f;
+  const Probe with_panel = probe_with_panel(panel, Vec3::Constant(0.3f));
+  const Probe with_lamp = probe_with_lamp(lamp, 0.12f, 100.0f, Vec3::Constant(0.3f));
+  for (const auto& [probe, light] : {std::pair(with_panel, small_panel), std::pair(with_lamp, small_lamp)}) {
+    const Probe clean = remove_lights_from_probe(probe, {light});
+    float left = 0.0f;
+    for (const auto& p : clean.image.pixels) left = std::max(left, std::abs(p.x() - 0.3f));
+    EXPECT_LT(left, 1e-4f) << (light.type == LightType::area ? "panel" : "lamp");
+  }
+  const auto seen = locate_light_in_probe(with_panel, small_panel);
+  ASSERT_TRUE(seen);
+  const auto emission = emission_from_probe(with_panel, panel, *seen);
+  ASSERT_TRUE(emission);
+  EXPECT_NEAR(emission->x(), 300.0f, 9.0f);  // 3 %
+}
+
 TEST(ProbeLights, NoLightWhereThereIsNone) {
   Probe probe;
   probe.image = Image(64, 32, Vec3::Constant(0.5f));

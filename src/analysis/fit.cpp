@@ -179,18 +179,16 @@ SightLine line_of_sight(const ProbeSighting& sighting, const Light& given) {
 }
 
 // How far along `line` the light's size puts it (distance_from_apparent_size),
-// where that is within a factor kSizeTrusted of where it was given: further
-// off, the size given or the place is wrong, and the photo places it.
+// where that agrees with where it was given (size_agrees_with_distance): further
+// off, the size given or the place is wrong (warn_about_the_view says so),
+// and the photo places it.
 std::optional<float> distance_from_size(const ProbeSighting& sighting, const Light& given, const SightLine& line) {
-  constexpr float kSizeTrusted = 1.5f;
   const auto distance = distance_from_apparent_size(*sighting.probe, given, sighting.seen, line.direction);
   if (!distance) return std::nullopt;
   const float given_distance = (line.nearest_to(given.position) - line.origin).norm();
-  if (*distance > kSizeTrusted * given_distance || kSizeTrusted * *distance < given_distance) {
-    spdlog::warn(
-        "{}: light \"{}\", of the size given, fills what this probe sees {:.2f} m from it, but it was given "
-        "{:.2f} m from it: its size or its place is wrong; it is placed from the photo",
-        sighting.probe->path, given.name, *distance, given_distance);
+  if (!size_agrees_with_distance(*distance, given_distance)) {
+    spdlog::info("light \"{}\": its size puts it {:.2f} m from probe {}, its place {:.2f} m: placed from the photo",
+                 given.name, *distance, sighting.probe->path, given_distance);
     return std::nullopt;
   }
   return distance;
@@ -293,9 +291,11 @@ class LightingFit {
         recover_albedo(scene_.photo, scene_.photo_clipped,
                        IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
     // The albedo overshoots and undershoots in turn (too little bounce light
-    // makes it too bright, which makes too much): after the first round, the
-    // next bounces off the mean of the last two, as the analysis does.
-    if (number == 1) {
+    // makes it too bright, which makes too much): after the first round (and
+    // the first after a light was resized), the next bounces off the mean of
+    // the last two, as the analysis does.
+    if (number == 1 || albedo_outdated_) {
+      albedo_outdated_ = false;
       bounce_albedo_ = albedo.albedo;
       unseen_ = albedo.mean;
     } else {
@@ -385,6 +385,33 @@ class LightingFit {
     scale_probe(probe, k);
   }
 
+  // A light the probes resolve whose size, where the light now is (placed,
+  // or as given), fills what the first of them sees only at a distance
+  // 1.5 times nearer or farther (size_agrees_with_distance): its size was wrong, not its
+  // place, and it takes the size that fills it there (a rectangle or a
+  // sphere scaled about the probe fills what it did: the distance's ratio
+  // is the size's). True where one was resized.
+  bool resize_from_probes() {
+    bool resized = false;
+    for (size_t k = 0; k < light_index_.size(); ++k) {
+      if (sightings_[k].empty()) continue;
+      const ProbeSighting& sighting = sightings_[k].front();
+      Light& light = result.scene.lights[light_index_[k]];
+      const Vec3 to_light = light.position - sighting.probe->position;
+      const float distance = to_light.norm();
+      const auto seen_at = distance_from_apparent_size(*sighting.probe, light, sighting.seen, to_light / distance);
+      if (!seen_at || size_agrees_with_distance(*seen_at, distance)) continue;
+      const float scale = distance / *seen_at;
+      if (light.type == LightType::area)
+        light.size *= scale;
+      else
+        light.radius *= scale;
+      result.lights[k].size_scale = scale;
+      resized = albedo_outdated_ = true;
+    }
+    return resized;
+  }
+
   // Writes the fitted emissions and background into the result.
   void publish() {
     for (size_t k = 0; k < light_index_.size(); ++k) {
@@ -464,6 +491,7 @@ class LightingFit {
   Image bounce_albedo_;    // the last round's albedo (at first: white)
   Vec3 unseen_ = Vec3::Ones();
   bool solved_ = false;  // a round had enough shadow edges to solve for the unknowns
+  bool albedo_outdated_ = false;  // the last albedo's lights were resized: the next round's replaces it
 };
 
 }  // namespace
@@ -474,8 +502,12 @@ std::vector<std::string> describe_fit(const FitResult& fit) {
                        after.x(), after.y(), after.z(), source);
   };
   std::vector<std::string> lines;
-  for (const FittedLight& l : fit.lights)
+  for (const FittedLight& l : fit.lights) {
     lines.push_back(change(fmt::format("{:<16} emission", l.name), l.emission_before, l.emission_after, l.source));
+    if (l.size_scale != 1.0f)
+      lines.push_back(
+          fmt::format("{:<16} size x {:.3g} (what the probe shows it fill where it is)", l.name, l.size_scale));
+  }
   lines.push_back(
       change(fmt::format("{:<16}", "background"), fit.background_before, fit.background_after, fit.background_source));
   for (const PlacedLight& p : fit.placement) {
@@ -504,6 +536,7 @@ void set_emission(Light& light, const Vec3& emission) {
 
 FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,
                        Progress& progress) {
+  constexpr int kPlacementPasses = 2;
   LightingFit fit(scene, rays, gbuffer, options, progress);
   for (int round = 1; round <= options.rounds; ++round) fit.round(round);
   fit.check_background_against_probes();
@@ -522,7 +555,6 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
     std::vector<std::optional<SightLine>> sight_lines;
     for (size_t i = 0; i < scene.lights.size(); ++i) sight_lines.push_back(fit.sight_line(i));
     const SightLineOf sight_line_of = [&sight_lines](size_t index) { return sight_lines[index]; };
-    constexpr int kPlacementPasses = 2;
     for (int pass = 0; pass < kPlacementPasses; ++pass) {
       std::vector<PlacedLight> placed =
           refine_light_placement(fit.result.scene, rays, gbuffer, fit.indirect_illumination(), emission_of,
@@ -546,6 +578,16 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
       fit.publish();
       if (!moved) break;
     }
+  }
+  // A light resized (its emission, measured by the probes, follows its size)
+  // is fitted twice more, its shadows rendered at that size: the first
+  // round's bounce light is still that of the albedo the old size gave, the
+  // second's that of the first's.
+  if (fit.resize_from_probes()) {
+    fit.follow_placement();
+    for (int round = 1; round <= 2; ++round) fit.round(options.rounds + kPlacementPasses + round);
+    fit.check_background_against_probes();
+    fit.publish();
   }
   fit.apply_reference();
   fit.publish();

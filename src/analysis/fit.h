@@ -30,6 +30,10 @@
 // 3. Optionally, the lights are then moved to where their shadows fall
 //    (light_placement.h) and their emission fitted once more; where they
 //    moved, once more against the bounce light from where they now are.
+// 4. A light whose size, where it then is, fills what a probe sees of it
+//    only 1.5 times nearer or farther takes the size that fills it there
+//    (the user's size was wrong, not the place), and the lights are fitted
+//    twice more.
 #pragma once
 
 #include <string>
@@ -53,6 +57,10 @@ struct FittedLight {
   std::string name;
   Vec3 emission_before, emission_after;  // colour x power (x irradiance for a sun)
   std::string source;  // "probe", "shadows", "kept (scale anchor)" or "kept: too few shadow edges to fit from"
+  // The factor its size (an area light's rectangle, a lamp's radius) was
+  // scaled by: where a probe resolves it and the size given fills what the
+  // probe sees only 1.5 times nearer or farther than the light is.
+  float size_scale = 1.0f;
 };
 
 struct FitResult {

@@ -60,6 +60,7 @@ Vec3 channel_median(std::vector<Vec3> values) {
 constexpr float kSearchDeg = 10.0f;  // how far the real light may be from where the user put it
 constexpr float kStandOut = 4.0f;    // a light pixel is this many times brighter than its surroundings
 constexpr float kHalf = 0.5f;        // of the brightest pixel: the light's own pixels
+constexpr float kCandidate = 1.0f / 16.0f;  // of the brightest near where it was put: a light's pixel
 constexpr size_t kMinMiddle = 4;     // pixels wholly inside a light: fewer, and the probe does not resolve it
 constexpr float kEven = 0.8f;        // of its middle's bright pixels, the dim ones: an evenly bright light
 
@@ -95,6 +96,53 @@ std::optional<float> middle_radiance(const Probe& probe, const std::vector<size_
   return float(percentile(middle, 0.5));
 }
 
+// The probe's pixels joined to pixel `seed`, neighbour by neighbour (across
+// the panorama's seam too), at least half as bright as the brightest so
+// joined: the light's spot however large it is, and not another lamp
+// beside it.
+PixelDirections bright_spot(const Probe& probe, size_t seed) {
+  const Image& img = probe.image;
+  const auto brightness = [&](size_t p) { return luminance(img.pixels[p]); };
+  const auto joined = [&](size_t start, float threshold) {
+    std::vector<size_t> spot{start};
+    std::vector<char> taken(img.pixels.size(), 0);
+    taken[start] = 1;
+    for (size_t next = 0; next < spot.size(); ++next) {
+      const int x = int(spot[next] % img.width), y = int(spot[next] / img.width);
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          int nx = x + dx;
+          const int ny = y + dy;
+          if (ny < 0 || ny >= img.height) continue;
+          if (nx < 0 || nx >= img.width) {
+            if (probe.mapping != ProbeMapping::equirect) continue;
+            nx = (nx + img.width) % img.width;
+          }
+          const size_t p = size_t(ny) * img.width + nx;
+          if (taken[p] || brightness(p) < threshold) continue;
+          taken[p] = 1;
+          spot.push_back(p);
+        }
+    }
+    return spot;
+  };
+  // Joined at half the seed's brightness; then, from the brightest of
+  // those, at half its brightness.
+  const std::vector<size_t> around_seed = joined(seed, kHalf * brightness(seed));
+  const size_t top = *std::max_element(around_seed.begin(), around_seed.end(),
+                                       [&](size_t a, size_t b) { return brightness(a) < brightness(b); });
+  const ProbeFrame frame(probe.forward, probe.up);
+  PixelDirections spot;
+  for (size_t p : joined(top, kHalf * brightness(top))) {
+    const Vec2 uv((float(p % img.width) + 0.5f) / img.width, (float(p / img.width) + 0.5f) / img.height);
+    if (const auto d = probe_uv_to_direction(probe.mapping, frame, uv)) {
+      spot.index.push_back(p);
+      spot.direction.push_back(*d);
+    }
+  }
+  return spot;
+}
+
 }  // namespace
 
 Vec3 seen_middle(const Light& light, const Vec3& from) {
@@ -122,42 +170,48 @@ std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Ligh
   const Image& img = probe.image;
 
   // 1. The light's bright spot: of the pixels in the search cone around the
-  //    expected direction at least half as bright as its brightest, the one
-  //    nearest that direction (another lamp a few degrees away may be as
-  //    bright); then the middle, by solid angle, of the pixels near it at
-  //    least half as bright as the brightest of them. A panel is evenly
-  //    bright, and its brightest pixel anywhere on it: centred there, a
-  //    ceiling panel seen from below measured 30 % low. "Near": within twice
-  //    the region's radius, the whole light from any point of it.
+  //    expected direction at least a sixteenth as bright as its brightest,
+  //    the one nearest that direction (another lamp a few degrees away may
+  //    be brighter: a ceiling panel's 125 W/m^2/sr beside a bare bulb's 316;
+  //    a wall it lights is hundreds of times dimmer); then the pixels joined
+  //    to it at least half as bright as the brightest of them (`bright_spot`),
+  //    and their middle by solid angle (a panel is evenly bright, and its
+  //    brightest pixel anywhere on it: centred there, a ceiling panel seen
+  //    from below measured 30 % low).
   const PixelDirections search = pixels_within(probe, expected, std::cos(radians(kSearchDeg) + radius));
   if (search.index.empty()) return std::nullopt;
   const auto brightness = [&](size_t i) { return luminance(img.pixels[search.index[i]]); };
   float search_brightest = 0.0f;
   for (size_t i = 0; i < search.index.size(); ++i) search_brightest = std::max(search_brightest, brightness(i));
+  const float candidate = kCandidate * search_brightest;
   size_t seed = 0;
   for (size_t i = 0; i < search.index.size(); ++i)
-    if (brightness(i) >= kHalf * search_brightest &&
-        (brightness(seed) < kHalf * search_brightest ||
-         search.direction[i].dot(expected) > search.direction[seed].dot(expected)))
+    if (brightness(i) >= candidate &&
+        (brightness(seed) < candidate || search.direction[i].dot(expected) > search.direction[seed].dot(expected)))
       seed = i;
   const auto solid_angle = [&](size_t pixel) {
     const int x = int(pixel % img.width), y = int(pixel / img.width);
     return probe_pixel_solid_angle(probe.mapping, Vec2((x + 0.5f) / img.width, (y + 0.5f) / img.height), img.width,
                                    img.height);
   };
-  // The region's radius: the light's angular radius plus a margin for the
-  // probe's blur (three pixels) and the user's estimate (one degree).
-  const float cone = radius + 3.0f * std::sqrt(solid_angle(search.index[seed])) + radians(1.0f);
-  const float cos_near = std::cos(std::min(kPi, 2.0f * cone));
-  const auto near_seed = [&](size_t i) { return search.direction[i].dot(search.direction[seed]) >= cos_near; };
-  float brightest = 0.0f;
-  for (size_t i = 0; i < search.index.size(); ++i)
-    if (near_seed(i)) brightest = std::max(brightest, brightness(i));
-  Vec3 bright_sum = Vec3::Zero();
-  for (size_t i = 0; i < search.index.size(); ++i)
-    if (near_seed(i) && brightness(i) >= kHalf * brightest)
-      bright_sum += solid_angle(search.index[i]) * search.direction[i];
-  const Vec3 centre = bright_sum.normalized();
+  const PixelDirections spot = bright_spot(probe, search.index[seed]);
+  if (spot.index.empty()) return std::nullopt;
+  Vec3 spot_sum = Vec3::Zero();
+  float brightest = 0.0f, cos_spot = 1.0f;
+  for (size_t i = 0; i < spot.index.size(); ++i) {
+    spot_sum += solid_angle(spot.index[i]) * spot.direction[i];
+    brightest = std::max(brightest, luminance(img.pixels[spot.index[i]]));
+  }
+  const Vec3 centre = spot_sum.normalized();
+  for (const Vec3& d : spot.direction) cos_spot = std::min(cos_spot, d.dot(centre));
+  // The region's radius: the spot's angular radius, not the size given (a
+  // light given a quarter of its size would leave its rim to pass for the
+  // wall behind it; one given twice its size would take in the walls around
+  // it, and their light for its own), plus a margin for the spot's rim
+  // pixels and the probe's blur (three and a half pixels) and for a light
+  // not evenly bright to its rim (one degree).
+  const float pixel = std::sqrt(solid_angle(search.index[seed]));
+  const float cone = std::min(kPi, std::acos(cos_spot) + 3.5f * pixel + radians(1.0f));
 
   // 2. The region around the centre, and the ring around it.
   const PixelDirections region = pixels_within(probe, centre, std::cos(cone));
@@ -247,6 +301,11 @@ std::optional<float> distance_from_apparent_size(const Probe& probe, const Light
       break;
   }
   return std::nullopt;
+}
+
+bool size_agrees_with_distance(float distance_from_size, float distance) {
+  constexpr float kAgree = 1.5f;
+  return distance_from_size <= kAgree * distance && kAgree * distance_from_size >= distance;
 }
 
 std::optional<Vec3> triangulate(const Vec3& a, const Vec3& u, const Vec3& b, const Vec3& v) {

@@ -25,10 +25,10 @@ struct LightInProbe {
   std::optional<float> solid_angle;
 };
 
-// The light's region in the probe: pixels within its angular radius plus a
-// margin around the middle of the brightest spot near its expected
-// direction. Nothing when the light is not visible there (no pixel stands
-// out from its surroundings).
+// The light's region in the probe: its bright spot near its expected
+// direction, as the probe shows it whatever size the light was given, plus
+// a margin for the probe's blur. Nothing when the light is not visible there
+// (no pixel stands out from its surroundings).
 std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Light& light);
 
 // The middle, by solid angle, of what the light fills seen from `from`:
@@ -44,6 +44,12 @@ Vec3 seen_middle(const Light& light, const Vec3& from);
 // resolve it or the light has no size.
 std::optional<float> distance_from_apparent_size(const Probe& probe, const Light& light, const LightInProbe& seen,
                                                  const Vec3& direction);
+
+// Whether the distance the light's size given puts it at
+// (distance_from_apparent_size) agrees with the distance it is at: within a
+// factor of 1.5, what a place given roughly explains. Further off, its size
+// or its place is wrong.
+bool size_agrees_with_distance(float distance_from_size, float distance);
 
 // The probe with every enabled light's region replaced by its surroundings.
 Probe remove_lights_from_probe(const Probe& probe, const std::vector<Light>& lights);

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <numeric>
 
+#include "analysis/probe_lights.h"
 #include "core/image.h"
+#include "core/sampling.h"
 #include "io/image_io.h"
 #include "render/direct_light.h"
 
@@ -19,6 +21,10 @@ constexpr float kUnitRatio = 50.0f;    // depth against the lights' distances
 // The share of the surfaces in view whose albedo may exceed 1 (noise,
 // highlights) before the lighting is said to be too weak.
 constexpr double kMaxShareAboveOne = 0.01;
+// Of a light's emitting surface, the share that may lie beyond the geometry
+// (a sample's rounding at a wall it touches) before it is said to.
+constexpr float kMaxShareBeyond = 0.05f;
+constexpr int kGrid = 16;  // samples each way over a light's surface
 
 float median(std::vector<float> values) {
   std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
@@ -61,6 +67,11 @@ void warn_about_depth(const Scene& scene, const PixelSurfaces& view) {
       likely_unit(ratio));
 }
 
+std::string light_key(const Scene& scene, size_t i) {
+  const Light& light = scene.lights[i];
+  return "/lights/" + std::to_string(i) + (light.name.empty() ? "" : " (" + light.name + ")");
+}
+
 void warn_about_unseen_lights(const Scene& scene, const RayScene& rays, const PixelSurfaces& view) {
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& light = scene.lights[i];
@@ -69,9 +80,66 @@ void warn_about_unseen_lights(const Scene& scene, const RayScene& rays, const Pi
     render_direct_light(view, rays, unit_light(light), DirectLightSettings{}, direct);
     if (is_black(direct))
       spdlog::warn(
-          "{}: /lights/{}{}: lights nothing the camera sees (every surface in view is behind it, outside "
-          "its cone or in shadow); check its position and direction",
-          scene.path.string(), i, light.name.empty() ? "" : " (" + light.name + ")");
+          "{}: {}: lights nothing the camera sees (every surface in view is behind it, outside its cone or in "
+          "shadow); check its position and direction",
+          scene.path.string(), light_key(scene, i));
+  }
+}
+
+// The share of the light's emitting surface (an area light's rectangle, a
+// lamp's sphere) that a surface of the geometry cuts off from its centre:
+// the part through a wall or a ceiling, whose light the room never gets.
+float share_beyond_the_geometry(const Light& light, const RayScene& rays) {
+  const bool rectangle = light.type == LightType::area;
+  if (!rectangle && (light.type == LightType::directional || light.radius <= 0.0f)) return 0.0f;
+  const AreaLightSides sides = rectangle ? area_light_sides(light) : AreaLightSides{};
+  int beyond = 0;
+  for (int i = 0; i < kGrid; ++i)
+    for (int j = 0; j < kGrid; ++j) {
+      const Vec2 u((i + 0.5f) / kGrid, (j + 0.5f) / kGrid);
+      const Vec3 offset =
+          rectangle ? Vec3((u.x() - 0.5f) * light.size.x() * sides.w + (u.y() - 0.5f) * light.size.y() * sides.h)
+                    : Vec3(light.radius * sample_uniform_sphere(u));
+      const float reach = offset.norm();
+      beyond += reach > 0.0f && rays.occluded(light.position, offset / reach, reach);
+    }
+  return float(beyond) / float(kGrid * kGrid);
+}
+
+void warn_about_lights_through_the_geometry(const Scene& scene, const RayScene& rays) {
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& light = scene.lights[i];
+    if (!light.enabled) continue;
+    const float share = share_beyond_the_geometry(light, rays);
+    if (share <= kMaxShareBeyond) continue;
+    spdlog::warn(
+        "{}: {}: {:.0f} % of its {} lies beyond a surface of the geometry (through a wall, the ceiling or an "
+        "object), and its light there never reaches the room; check its size and position",
+        scene.path.string(), light_key(scene, i), 100.0f * share,
+        light.type == LightType::area ? "rectangle" : "sphere");
+  }
+}
+
+// A light a probe resolves whose size given fills what the probe sees of it
+// at a distance far from where it is: its size or its place is wrong.
+void warn_about_sizes_the_probes_contradict(const Scene& scene) {
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& light = scene.lights[i];
+    for (const Probe& probe : scene.probes) {
+      const auto seen = locate_light_in_probe(probe, light);
+      if (!seen) continue;
+      const Vec3 to_light = light.position - probe.position;
+      const auto seen_at = distance_from_apparent_size(probe, light, *seen, to_light.normalized());
+      if (!seen_at) continue;
+      if (!size_agrees_with_distance(*seen_at, to_light.norm()))
+        spdlog::warn(
+            "{}: {}: probe {} shows it {:.2g} times the size given (of that size it would be {:.2f} m from the "
+            "probe, not {:.2f} m): its size or its place is wrong; `relight fit` resizes it, with "
+            "--refine-placement places it",
+            scene.path.string(), light_key(scene, i), probe.path, to_light.norm() / *seen_at, *seen_at,
+            to_light.norm());
+      break;  // the first probe that resolves it
+    }
   }
 }
 
@@ -82,6 +150,8 @@ void warn_about_the_view(const Scene& scene, const RayScene& rays, const GBuffer
   warn_about_coverage(scene, gbuffer);
   warn_about_depth(scene, view);
   warn_about_unseen_lights(scene, rays, view);
+  warn_about_lights_through_the_geometry(scene, rays);
+  warn_about_sizes_the_probes_contradict(scene);
 }
 
 void warn_about_albedo_above_one(const std::string& scene_file, const GBuffer& gbuffer, const Image& albedo,

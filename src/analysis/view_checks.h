@@ -1,7 +1,8 @@
 // Warnings about a scene that loads but is likely mistaken, from what the
 // camera sees (its G-buffer): geometry covering almost none of the photo,
 // geometry at a depth a hundred times off the lights' and probes' distances
-// (a unit mixed up), a light that lights nothing in view. Given before
+// (a unit mixed up), a light that lights nothing in view, a light whose
+// rectangle or sphere passes through a wall (its size or place wrong). Given before
 // `fit` and `analyze` start, so that a mistake is named before the work.
 #pragma once
 
