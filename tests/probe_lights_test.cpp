@@ -228,6 +228,27 @@ TEST(ProbeLights, ALightGivenTooSmallIsFoundWhole) {
   EXPECT_NEAR(emission->x(), 300.0f, 9.0f);  // 3 %
 }
 
+// A sky that brightens smoothly towards its sun, 50 degrees from where a
+// lamp was put that the probe (an HDRI of the sky alone) does not show:
+// nothing is found there. Joined up the sky's slope, the sun would have
+// been taken for the lamp and taken out of the sky.
+TEST(ProbeLights, ASkysSunIsNotTakenForALampFarFromIt) {
+  const Vec3 sun = Vec3(std::sin(radians(50.0f)), std::cos(radians(50.0f)), 0.0f);
+  Probe probe = probe_with_lamp(20.0f * sun, 0.1f, 1e6f, Vec3::Zero());
+  const ProbeFrame frame(probe.forward, probe.up);
+  for (int y = 0; y < probe.image.height; ++y)
+    for (int x = 0; x < probe.image.width; ++x) {
+      const Vec2 uv((x + 0.5f) / probe.image.width, (y + 0.5f) / probe.image.height);
+      const float towards = std::max(0.0f, probe_uv_to_direction(ProbeMapping::equirect, frame, uv)->dot(sun));
+      probe.image.at(x, y) += Vec3::Constant(0.3f + 3.0f * std::pow(towards, 4.0f));
+    }
+  Light lamp;
+  lamp.position = Vec3(0.0f, 2.0f, 0.0f);  // straight ahead, 50 degrees from the sun
+  lamp.radius = 0.05f;
+  lamp.power = 100.0f;
+  EXPECT_FALSE(locate_light_in_probe(probe, lamp));
+}
+
 TEST(ProbeLights, NoLightWhereThereIsNone) {
   Probe probe;
   probe.image = Image(64, 32, Vec3::Constant(0.5f));

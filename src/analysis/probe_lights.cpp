@@ -61,6 +61,7 @@ constexpr float kSearchDeg = 10.0f;  // how far the real light may be from where
 constexpr float kStandOut = 4.0f;    // a light pixel is this many times brighter than its surroundings
 constexpr float kHalf = 0.5f;        // of the brightest pixel: the light's own pixels
 constexpr float kCandidate = 1.0f / 16.0f;  // of the brightest near where it was put: a light's pixel
+constexpr float kLeak = 2.0f;               // of a spot's peak: a brighter pixel joined to it is another light
 constexpr size_t kMinMiddle = 4;     // pixels wholly inside a light: fewer, and the probe does not resolve it
 constexpr float kEven = 0.8f;        // of its middle's bright pixels, the dim ones: an evenly bright light
 
@@ -96,14 +97,24 @@ std::optional<float> middle_radiance(const Probe& probe, const std::vector<size_
   return float(percentile(middle, 0.5));
 }
 
-// The probe's pixels joined to pixel `seed`, neighbour by neighbour (across
-// the panorama's seam too), at least half as bright as the brightest so
-// joined: the light's spot however large it is, and not another lamp
-// beside it.
-PixelDirections bright_spot(const Probe& probe, size_t seed) {
+struct BrightSpot {
+  PixelDirections pixels;
+  float peak = 0.0f;  // the brightness it was joined from
+};
+
+// The light's spot around pixel `seed` of the search cone: from `seed` up to
+// the brightest pixel joined to it within the cone (neighbour by neighbour,
+// across the panorama's seam too, at least half as bright as `seed`), then
+// the pixels joined to that peak, in the cone or not, at least half as
+// bright as it. The light's spot however large it is, and not another lamp
+// beside it; nothing where it joins something much brighter than its peak
+// (a patch of sky joined to the sun), which is not this light.
+std::optional<BrightSpot> bright_spot(const Probe& probe, const PixelDirections& search, size_t seed) {
   const Image& img = probe.image;
   const auto brightness = [&](size_t p) { return luminance(img.pixels[p]); };
-  const auto joined = [&](size_t start, float threshold) {
+  std::vector<char> in_search(img.pixels.size(), 0);
+  for (size_t p : search.index) in_search[p] = 1;
+  const auto joined = [&](size_t start, float threshold, bool within_search) {
     std::vector<size_t> spot{start};
     std::vector<char> taken(img.pixels.size(), 0);
     taken[start] = 1;
@@ -119,27 +130,27 @@ PixelDirections bright_spot(const Probe& probe, size_t seed) {
             nx = (nx + img.width) % img.width;
           }
           const size_t p = size_t(ny) * img.width + nx;
-          if (taken[p] || brightness(p) < threshold) continue;
+          if (taken[p] || brightness(p) < threshold || (within_search && !in_search[p])) continue;
           taken[p] = 1;
           spot.push_back(p);
         }
     }
     return spot;
   };
-  // Joined at half the seed's brightness; then, from the brightest of
-  // those, at half its brightness.
-  const std::vector<size_t> around_seed = joined(seed, kHalf * brightness(seed));
-  const size_t top = *std::max_element(around_seed.begin(), around_seed.end(),
+  const std::vector<size_t> climbed = joined(seed, kHalf * brightness(seed), true);
+  const size_t top = *std::max_element(climbed.begin(), climbed.end(),
                                        [&](size_t a, size_t b) { return brightness(a) < brightness(b); });
+  BrightSpot spot{{}, brightness(top)};
   const ProbeFrame frame(probe.forward, probe.up);
-  PixelDirections spot;
-  for (size_t p : joined(top, kHalf * brightness(top))) {
+  for (size_t p : joined(top, kHalf * spot.peak, false)) {
+    if (brightness(p) > kLeak * spot.peak) return std::nullopt;
     const Vec2 uv((float(p % img.width) + 0.5f) / img.width, (float(p / img.width) + 0.5f) / img.height);
     if (const auto d = probe_uv_to_direction(probe.mapping, frame, uv)) {
-      spot.index.push_back(p);
-      spot.direction.push_back(*d);
+      spot.pixels.index.push_back(p);
+      spot.pixels.direction.push_back(*d);
     }
   }
+  if (spot.pixels.index.empty()) return std::nullopt;
   return spot;
 }
 
@@ -194,15 +205,14 @@ std::optional<LightInProbe> locate_light_in_probe(const Probe& probe, const Ligh
     return probe_pixel_solid_angle(probe.mapping, Vec2((x + 0.5f) / img.width, (y + 0.5f) / img.height), img.width,
                                    img.height);
   };
-  const PixelDirections spot = bright_spot(probe, search.index[seed]);
-  if (spot.index.empty()) return std::nullopt;
+  const std::optional<BrightSpot> found = bright_spot(probe, search, search.index[seed]);
+  if (!found) return std::nullopt;
+  const PixelDirections& spot = found->pixels;
+  const float brightest = found->peak;
   Vec3 spot_sum = Vec3::Zero();
-  float brightest = 0.0f, cos_spot = 1.0f;
-  for (size_t i = 0; i < spot.index.size(); ++i) {
-    spot_sum += solid_angle(spot.index[i]) * spot.direction[i];
-    brightest = std::max(brightest, luminance(img.pixels[spot.index[i]]));
-  }
+  for (size_t i = 0; i < spot.index.size(); ++i) spot_sum += solid_angle(spot.index[i]) * spot.direction[i];
   const Vec3 centre = spot_sum.normalized();
+  float cos_spot = 1.0f;
   for (const Vec3& d : spot.direction) cos_spot = std::min(cos_spot, d.dot(centre));
   // The region's radius: the spot's angular radius, not the size given (a
   // light given a quarter of its size would leave its rim to pass for the
