@@ -179,14 +179,14 @@ SightLine line_of_sight(const ProbeSighting& sighting, const Light& given) {
 }
 
 // How far along `line` the light's size puts it (distance_from_apparent_size),
-// where that agrees with where it was given (size_agrees_with_distance): further
+// where that agrees with where it was given (sizes_agree): further
 // off, the size given or the place is wrong (warn_about_the_view says so),
 // and the photo places it.
 std::optional<float> distance_from_size(const ProbeSighting& sighting, const Light& given, const SightLine& line) {
   const auto distance = distance_from_apparent_size(*sighting.probe, given, sighting.seen, line.direction);
   if (!distance) return std::nullopt;
   const float given_distance = (line.nearest_to(given.position) - line.origin).norm();
-  if (!size_agrees_with_distance(*distance, given_distance)) {
+  if (!sizes_agree(given_distance / *distance)) {
     spdlog::info("light \"{}\": its size puts it {:.2f} m from probe {}, its place {:.2f} m: placed from the photo",
                  given.name, *distance, sighting.probe->path, given_distance);
     return std::nullopt;
@@ -386,27 +386,22 @@ class LightingFit {
   }
 
   // A light the probes resolve whose size, where the light now is (placed,
-  // or as given), fills what the first of them sees only at a distance
-  // 1.5 times nearer or farther (size_agrees_with_distance): its size was wrong, not its
-  // place, and it takes the size that fills it there (a rectangle or a
-  // sphere scaled about the probe fills what it did: the distance's ratio
-  // is the size's). True where one was resized.
+  // or as given), the first of them shows over 1.5 times too large or too
+  // small (sizes_agree): its size was wrong, not its place, and it takes the
+  // size the probe shows. True where one was resized.
   bool resize_from_probes() {
     bool resized = false;
     for (size_t k = 0; k < light_index_.size(); ++k) {
       if (sightings_[k].empty()) continue;
       const ProbeSighting& sighting = sightings_[k].front();
       Light& light = result.scene.lights[light_index_[k]];
-      const Vec3 to_light = light.position - sighting.probe->position;
-      const float distance = to_light.norm();
-      const auto seen_at = distance_from_apparent_size(*sighting.probe, light, sighting.seen, to_light / distance);
-      if (!seen_at || size_agrees_with_distance(*seen_at, distance)) continue;
-      const float scale = distance / *seen_at;
+      const auto scale = size_seen_over_given(*sighting.probe, light, sighting.seen);
+      if (!scale || sizes_agree(*scale)) continue;
       if (light.type == LightType::area)
-        light.size *= scale;
+        light.size *= *scale;
       else
-        light.radius *= scale;
-      result.lights[k].size_scale = scale;
+        light.radius *= *scale;
+      result.lights[k].size_scale = *scale;
       resized = albedo_outdated_ = true;
     }
     return resized;
@@ -448,8 +443,9 @@ class LightingFit {
     return line;
   }
 
-  // The lights the probes measured, their emission where they were placed.
-  void follow_placement() {
+  // The lights the probes measured, their emission where they now are and
+  // of the size they now have.
+  void remeasure_emissions() {
     for (size_t k = 0; k < light_index_.size(); ++k)
       if (const auto e = emission_from_sightings(sightings_[k], result.scene.lights[light_index_[k]]))
         bases_[k].emission = *e;
@@ -572,7 +568,7 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
           total.objective_after = placed[k].objective_after;
         }
       }
-      fit.follow_placement();
+      fit.remeasure_emissions();
       fit.round(options.rounds + 1 + pass);
       fit.check_background_against_probes();
       fit.publish();
@@ -584,7 +580,7 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
   // round's bounce light is still that of the albedo the old size gave, the
   // second's that of the first's.
   if (fit.resize_from_probes()) {
-    fit.follow_placement();
+    fit.remeasure_emissions();
     for (int round = 1; round <= 2; ++round) fit.round(options.rounds + kPlacementPasses + round);
     fit.check_background_against_probes();
     fit.publish();

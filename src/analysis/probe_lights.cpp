@@ -65,6 +65,18 @@ constexpr float kLeak = 2.0f;               // of a spot's peak: a brighter pixe
 constexpr size_t kMinMiddle = 4;     // pixels wholly inside a light: fewer, and the probe does not resolve it
 constexpr float kEven = 0.8f;        // of its middle's bright pixels, the dim ones: an evenly bright light
 
+// The pixel at (x, y) of the probe, across the panorama's seam where it has
+// one; nothing off the image.
+std::optional<size_t> probe_pixel(const Probe& probe, int x, int y) {
+  const Image& img = probe.image;
+  if (y < 0 || y >= img.height) return std::nullopt;
+  if (x < 0 || x >= img.width) {
+    if (probe.mapping != ProbeMapping::equirect) return std::nullopt;
+    x = (x + img.width) % img.width;
+  }
+  return size_t(y) * img.width + size_t(x);
+}
+
 // The radiance above the surroundings of the light's evenly bright middle:
 // the median of the region's pixels whose eight neighbours are all at least
 // half as bright as its brightest (no pixel of it partly the light, partly
@@ -78,12 +90,8 @@ std::optional<float> middle_radiance(const Probe& probe, const std::vector<size_
   std::vector<char> bright(img.pixels.size(), 0);
   for (size_t p : region) bright[p] = excess(p) >= kHalf * brightest;
   const auto is_bright = [&](int x, int y) {
-    if (y < 0 || y >= img.height) return false;
-    if (x < 0 || x >= img.width) {
-      if (probe.mapping != ProbeMapping::equirect) return false;
-      x = (x + img.width) % img.width;  // the panorama's seam
-    }
-    return bright[size_t(y) * img.width + x] != 0;
+    const std::optional<size_t> p = probe_pixel(probe, x, y);
+    return p && bright[*p] != 0;
   };
   std::vector<double> middle;
   for (size_t p : region) {
@@ -122,17 +130,10 @@ std::optional<BrightSpot> bright_spot(const Probe& probe, const PixelDirections&
       const int x = int(spot[next] % img.width), y = int(spot[next] / img.width);
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          int nx = x + dx;
-          const int ny = y + dy;
-          if (ny < 0 || ny >= img.height) continue;
-          if (nx < 0 || nx >= img.width) {
-            if (probe.mapping != ProbeMapping::equirect) continue;
-            nx = (nx + img.width) % img.width;
-          }
-          const size_t p = size_t(ny) * img.width + nx;
-          if (taken[p] || brightness(p) < threshold || (within_search && !in_search[p])) continue;
-          taken[p] = 1;
-          spot.push_back(p);
+          const std::optional<size_t> p = probe_pixel(probe, x + dx, y + dy);
+          if (!p || taken[*p] || brightness(*p) < threshold || (within_search && !in_search[*p])) continue;
+          taken[*p] = 1;
+          spot.push_back(*p);
         }
     }
     return spot;
@@ -313,9 +314,18 @@ std::optional<float> distance_from_apparent_size(const Probe& probe, const Light
   return std::nullopt;
 }
 
-bool size_agrees_with_distance(float distance_from_size, float distance) {
+std::optional<float> size_seen_over_given(const Probe& probe, const Light& light, const LightInProbe& seen) {
+  const Vec3 to_light = light.position - probe.position;
+  const float distance = to_light.norm();
+  if (!(distance > 0.0f)) return std::nullopt;
+  const auto filled_at = distance_from_apparent_size(probe, light, seen, to_light / distance);
+  if (!filled_at) return std::nullopt;
+  return distance / *filled_at;
+}
+
+bool sizes_agree(float ratio) {
   constexpr float kAgree = 1.5f;
-  return distance_from_size <= kAgree * distance && kAgree * distance_from_size >= distance;
+  return ratio <= kAgree && kAgree * ratio >= 1.0f;
 }
 
 std::optional<Vec3> triangulate(const Vec3& a, const Vec3& u, const Vec3& b, const Vec3& v) {

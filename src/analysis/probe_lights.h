@@ -45,11 +45,18 @@ Vec3 seen_middle(const Light& light, const Vec3& from);
 std::optional<float> distance_from_apparent_size(const Probe& probe, const Light& light, const LightInProbe& seen,
                                                  const Vec3& direction);
 
-// Whether the distance the light's size given puts it at
-// (distance_from_apparent_size) agrees with the distance it is at: within a
-// factor of 1.5, what a place given roughly explains. Further off, its size
-// or its place is wrong.
-bool size_agrees_with_distance(float distance_from_size, float distance);
+// How many times its size given the probe shows the light where it is: its
+// distance from the probe over the distance at which, of the size given, it
+// would fill what the probe sees (distance_from_apparent_size along the line
+// to its centre; a rectangle or sphere scaled about the probe fills what it
+// did, so this is exactly the factor its size is off). Nothing where the
+// probe does not resolve it.
+std::optional<float> size_seen_over_given(const Probe& probe, const Light& light, const LightInProbe& seen);
+
+// Whether two sizes or distances in `ratio` agree: within a factor of 1.5,
+// what a place given roughly explains. Further off, a light's size or its
+// place is wrong.
+bool sizes_agree(float ratio);
 
 // The probe with every enabled light's region replaced by its surroundings.
 Probe remove_lights_from_probe(const Probe& probe, const std::vector<Light>& lights);

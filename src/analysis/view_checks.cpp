@@ -128,16 +128,13 @@ void warn_about_sizes_the_probes_contradict(const Scene& scene) {
     for (const Probe& probe : scene.probes) {
       const auto seen = locate_light_in_probe(probe, light);
       if (!seen) continue;
-      const Vec3 to_light = light.position - probe.position;
-      const auto seen_at = distance_from_apparent_size(probe, light, *seen, to_light.normalized());
-      if (!seen_at) continue;
-      if (!size_agrees_with_distance(*seen_at, to_light.norm()))
+      const auto scale = size_seen_over_given(probe, light, *seen);
+      if (!scale) continue;
+      if (!sizes_agree(*scale))
         spdlog::warn(
-            "{}: {}: probe {} shows it {:.2g} times the size given (of that size it would be {:.2f} m from the "
-            "probe, not {:.2f} m): its size or its place is wrong; `relight fit` resizes it, with "
-            "--refine-placement places it",
-            scene.path.string(), light_key(scene, i), probe.path, to_light.norm() / *seen_at, *seen_at,
-            to_light.norm());
+            "{}: {}: probe {} shows it {:.2g} times the size given: its size or its place is wrong; `relight fit` "
+            "resizes it, with --refine-placement places it",
+            scene.path.string(), light_key(scene, i), probe.path, *scale);
       break;  // the first probe that resolves it
     }
   }
