@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "analysis/color_chart.h"
+#include "analysis/photo_radiance.h"
 #include "analysis/probe_cleanup.h"
 #include "analysis/probe_exposure.h"
 #include "analysis/probe_lights.h"
@@ -28,15 +29,33 @@ struct Basis {
 };
 
 IlluminationParts render_basis(const RayScene& rays, const GBuffer& gbuffer, Lighting lighting,
-                               const SurfaceAlbedo& bounce, const FitOptions& options, Progress& progress) {
+                               const SurfaceAlbedo& bounce, const KnownRadiance& known, const FitOptions& options,
+                               Progress& progress) {
   IntegratorOptions integrator_options;
   integrator_options.max_bounces = options.max_bounces;
-  const Integrator integrator(rays, lighting, &bounce, integrator_options);
+  const Integrator integrator(rays, lighting, &bounce, integrator_options, &known);
   IlluminationOptions illumination;
   illumination.paths_per_pixel = options.paths_per_pixel;
   illumination.seed = options.seed;
   return render_illumination_parts(gbuffer, integrator, illumination, progress, "fit: light transport");
 }
+
+// The bounce light off what the photo (or a probe) shows is the radiance it
+// shows there, whatever lit it (PhotoRadiance): the fit renders it once, as
+// a basis of known emission 1, and each light's and the background's basis
+// only what bounces off the rest. A path of those ends dark where the photo
+// shows the point it reaches.
+class ShownAsDark final : public KnownRadiance {
+ public:
+  explicit ShownAsDark(const PhotoRadiance& shown) : shown_(shown) {}
+  std::optional<Vec3> at(const SurfacePoint& p) const override {
+    if (shown_.at(p)) return Vec3::Zero();
+    return std::nullopt;
+  }
+
+ private:
+  const PhotoRadiance& shown_;
+};
 
 struct PixelPair {
   size_t p, q;
@@ -49,6 +68,8 @@ constexpr size_t kMinEdgePairs = 200;
 
 // Nearby pixels (a few apart) on one plane, fully covered, where the
 // share of the lights in the illumination differs: across a shadow edge.
+// (The light bounced off what the photo shows counts with the lights': most
+// of it is theirs.)
 // (Pairs across a bend — the facets of a column — would also test the shading
 // model; a cast shadow on a plane tests only the light.)
 // Pixels the photo clipped (Scene::photo_clipped) take part in no pair.
@@ -258,20 +279,27 @@ class LightingFit {
     }
     background_ = bases_.size();
     bases_.push_back(Basis{Image(), Image(), false, scene.background});
+    shown_ = bases_.size();
+    bases_.push_back(Basis{Image(), Image(), true, Vec3::Ones()});
   }
 
   // Renders the bases with the lights where result.scene has them, solves the
   // edge equations, and recovers the albedo for the next round's bounce light.
   void round(int number) {
     const PhotoAlbedo bounce(scene_.camera, gbuffer_, bounce_albedo_, unseen_);
+    // The lights as they now are: the probes' pixels that show them are not
+    // a wall's radiance.
+    const PhotoRadiance shown(scene_.camera, gbuffer_, scene_.photo, result.scene.probes, rays_, result.scene.lights);
+    const ShownAsDark elsewhere(shown);
     for (size_t k = 0; k < light_index_.size(); ++k) {
       Lighting lighting;
       lighting.lights = {unit_light(result.scene.lights[light_index_[k]])};
-      render(bases_[k], lighting, bounce);
+      render(bases_[k], lighting, bounce, elsewhere);
     }
     Lighting sky;
     sky.environment = Environment::constant(Vec3::Ones());
-    render(bases_[background_], sky, bounce);
+    render(bases_[background_], sky, bounce, elsewhere);
+    render(bases_[shown_], Lighting{}, bounce, shown);
 
     const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer_, bases_, background_, scene_.photo_clipped);
     result.edge_pairs = pairs.size();
@@ -290,7 +318,8 @@ class LightingFit {
     const AlbedoImages albedo =
         recover_albedo(scene_.photo, scene_.photo_clipped,
                        IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
-    // The albedo overshoots and undershoots in turn (too little bounce light
+    // The albedo (it matters only where neither the photo nor a probe shows
+    // a surface) overshoots and undershoots in turn (too little bounce light
     // makes it too bright, which makes too much): after the first round (and
     // the first after a light was resized), the next bounces off the mean of
     // the last two, as the analysis does.
@@ -334,15 +363,24 @@ class LightingFit {
       spdlog::info("{}: /reference: {} of the chart's {} patches on the geometry in view, {} pixels",
                    scene_.path.string(), patches_seen, reference.patches, pixels);
     const Vec3 ratio = recovered_x_known.cwiseQuotient(known_squared);
-    for (Basis& b : bases_) b.emission = b.emission.cwiseProduct(ratio);
+    // The light bounced off what the photo shows is the photo's: its scale
+    // is the photo's whatever the lights'.
+    for (size_t k = 0; k < bases_.size(); ++k)
+      if (k != shown_) bases_[k].emission = bases_[k].emission.cwiseProduct(ratio);
     for (Vec3& a : bounce_albedo_.pixels) a = a.cwiseQuotient(ratio);
     for (Probe& p : result.scene.probes) scale_probe(p, ratio);
     unseen_ = unseen_.cwiseQuotient(ratio);
     result.reference_scale = ratio;
   }
 
-  void warn_if_albedo_above_one() const {
-    warn_about_albedo_above_one(scene_.path.string(), gbuffer_, bounce_albedo_, unseen_, "the fitted lighting");
+  // On the albedo the fitted lighting gives as it now stands (the analysis
+  // will find much the same).
+  void check_albedo_above_one() {
+    const AlbedoImages albedo =
+        recover_albedo(scene_.photo, scene_.photo_clipped,
+                       IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
+    result.albedo_above_one = share_above_one(gbuffer_, albedo.albedo);
+    warn_about_albedo_above_one(scene_.path.string(), gbuffer_, albedo.albedo, albedo.mean, "the fitted lighting");
   }
 
   // Soft light (a lamp indoors) casts too few sharp shadows to tell the
@@ -459,8 +497,8 @@ class LightingFit {
   FitResult result;
 
  private:
-  void render(Basis& basis, const Lighting& lighting, const SurfaceAlbedo& bounce) {
-    IlluminationParts parts = render_basis(rays_, gbuffer_, lighting, bounce, options_, progress_);
+  void render(Basis& basis, const Lighting& lighting, const SurfaceAlbedo& bounce, const KnownRadiance& known) {
+    IlluminationParts parts = render_basis(rays_, gbuffer_, lighting, bounce, known, options_, progress_);
     basis.image = parts.total();
     basis.indirect = std::move(parts.indirect);
   }
@@ -484,6 +522,7 @@ class LightingFit {
   std::vector<std::vector<ProbeSighting>> sightings_;  // basis k's light in the probes (none: not measured)
   std::vector<Basis> bases_;
   size_t background_ = 0;  // the background's basis
+  size_t shown_ = 0;       // the basis of the light bounced off what the photo and probes show
   Image bounce_albedo_;    // the last round's albedo (at first: white)
   Vec3 unseen_ = Vec3::Ones();
   bool solved_ = false;  // a round had enough shadow edges to solve for the unknowns
@@ -587,7 +626,7 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
   }
   fit.apply_reference();
   fit.publish();
-  fit.warn_if_albedo_above_one();
+  fit.check_albedo_above_one();
   return fit.result;
 }
 

@@ -73,6 +73,10 @@ struct FitResult {
   // With a reference: the factor (per channel) every emission was scaled by
   // so that the reference's albedo came out as given; otherwise 1.
   Vec3 reference_scale = Vec3::Ones();
+  // The share of the surfaces in view whose albedo, with the fitted
+  // lighting, is above 1 (over 1 %: `relight fit` warns that the lights
+  // are too weak for the photo).
+  double albedo_above_one = 0.0;
 };
 
 FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,

@@ -151,8 +151,7 @@ void warn_about_the_view(const Scene& scene, const RayScene& rays, const GBuffer
   warn_about_sizes_the_probes_contradict(scene);
 }
 
-void warn_about_albedo_above_one(const std::string& scene_file, const GBuffer& gbuffer, const Image& albedo,
-                                 const Vec3& unseen, const char* lighting) {
+double share_above_one(const GBuffer& gbuffer, const Image& albedo) {
   size_t covered = 0, above = 0;
   for (int y = 0; y < gbuffer.height(); ++y)
     for (int x = 0; x < gbuffer.width(); ++x) {
@@ -160,10 +159,15 @@ void warn_about_albedo_above_one(const std::string& scene_file, const GBuffer& g
       ++covered;
       if (albedo.at(x, y).maxCoeff() > 1.0f) ++above;
     }
+  return covered > 0 ? double(above) / double(covered) : 0.0;
+}
+
+void warn_about_albedo_above_one(const std::string& scene_file, const GBuffer& gbuffer, const Image& albedo,
+                                 const Vec3& unseen, const char* lighting) {
   const char* why = "the lights are too weak for the photo (a light missing, its power too low, or a probe forgotten)";
-  if (covered > 0 && double(above) > kMaxShareAboveOne * double(covered))
+  if (const double above = share_above_one(gbuffer, albedo); above > kMaxShareAboveOne)
     spdlog::warn("{}: with {} the albedo is above 1 on {:.1f} % of the surfaces in view: {}", scene_file, lighting,
-                 100.0 * double(above) / double(covered), why);
+                 100.0 * above, why);
   if (unseen.maxCoeff() > 1.0f)
     spdlog::warn("{}: with {} the surfaces the camera does not see take an albedo of {:.2f} {:.2f} {:.2f}, above 1: {}",
                  scene_file, lighting, unseen.x(), unseen.y(), unseen.z(), why);

@@ -17,6 +17,10 @@ namespace relight {
 
 void warn_about_the_view(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer);
 
+// The share of the fully covered pixels of `albedo` (photo-sized) where it
+// is above 1.
+double share_above_one(const GBuffer& gbuffer, const Image& albedo);
+
 // After the division: an albedo above 1 is no surface (it reflects more than
 // it receives). Warns, naming the scene file, where that holds on more than
 // 1 % of the fully covered pixels of `albedo` (photo-sized), or for the
