@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "analysis/color_chart.h"
 #include "analysis/photo_radiance.h"
@@ -281,16 +282,14 @@ class LightingFit {
     bases_.push_back(Basis{Image(), Image(), false, scene.background});
     shown_ = bases_.size();
     bases_.push_back(Basis{Image(), Image(), true, Vec3::Ones()});
+    see_the_photo_radiance();
   }
 
   // Renders the bases with the lights where result.scene has them, solves the
   // edge equations, and recovers the albedo for the next round's bounce light.
   void round(int number) {
     const PhotoAlbedo bounce(scene_.camera, gbuffer_, bounce_albedo_, unseen_);
-    // The lights as they now are: the probes' pixels that show them are not
-    // a wall's radiance.
-    const PhotoRadiance shown(scene_.camera, gbuffer_, scene_.photo, result.scene.probes, rays_, result.scene.lights);
-    const ShownAsDark elsewhere(shown);
+    const ShownAsDark elsewhere(*shown_radiance_);
     for (size_t k = 0; k < light_index_.size(); ++k) {
       Lighting lighting;
       lighting.lights = {unit_light(result.scene.lights[light_index_[k]])};
@@ -299,7 +298,7 @@ class LightingFit {
     Lighting sky;
     sky.environment = Environment::constant(Vec3::Ones());
     render(bases_[background_], sky, bounce, elsewhere);
-    render(bases_[shown_], Lighting{}, bounce, shown);
+    render(bases_[shown_], Lighting{}, bounce, *shown_radiance_);
 
     const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer_, bases_, background_, scene_.photo_clipped);
     result.edge_pairs = pairs.size();
@@ -315,9 +314,7 @@ class LightingFit {
     spdlog::info("fit round {}: {} shadow-edge pixel pairs, background {:.4f} {:.4f} {:.4f}", number, pairs.size(),
                  bg.x(), bg.y(), bg.z());
 
-    const AlbedoImages albedo =
-        recover_albedo(scene_.photo, scene_.photo_clipped,
-                       IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
+    const AlbedoImages albedo = fitted_albedo();
     // The albedo (it matters only where neither the photo nor a probe shows
     // a surface) overshoots and undershoots in turn (too little bounce light
     // makes it too bright, which makes too much): after the first round (and
@@ -376,9 +373,7 @@ class LightingFit {
   // On the albedo the fitted lighting gives as it now stands (the analysis
   // will find much the same).
   void check_albedo_above_one() {
-    const AlbedoImages albedo =
-        recover_albedo(scene_.photo, scene_.photo_clipped,
-                       IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
+    const AlbedoImages albedo = fitted_albedo();
     result.albedo_above_one = share_above_one(gbuffer_, albedo.albedo);
     warn_about_albedo_above_one(scene_.path.string(), gbuffer_, albedo.albedo, albedo.mean, "the fitted lighting");
   }
@@ -481,12 +476,14 @@ class LightingFit {
     return line;
   }
 
-  // The lights the probes measured, their emission where they now are and
-  // of the size they now have.
+  // The lights moved or resized: the probes measured, their emission where
+  // they now are and of the size they now have, and the probe pixels that
+  // show them.
   void remeasure_emissions() {
     for (size_t k = 0; k < light_index_.size(); ++k)
       if (const auto e = emission_from_sightings(sightings_[k], result.scene.lights[light_index_[k]]))
         bases_[k].emission = *e;
+    see_the_photo_radiance();
   }
 
   // The illumination of the lighting fitted so far.
@@ -497,6 +494,19 @@ class LightingFit {
   FitResult result;
 
  private:
+  // The photo's and probes' radiance with the lights as they now are: the
+  // probe pixels that show a light are not a wall's radiance.
+  void see_the_photo_radiance() {
+    shown_radiance_ = std::make_unique<PhotoRadiance>(scene_.camera, gbuffer_, scene_.photo, result.scene.probes,
+                                                      rays_, result.scene.lights);
+  }
+
+  // The albedo the photo over the illumination fitted so far gives.
+  AlbedoImages fitted_albedo() const {
+    return recover_albedo(scene_.photo, scene_.photo_clipped,
+                          IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
+  }
+
   void render(Basis& basis, const Lighting& lighting, const SurfaceAlbedo& bounce, const KnownRadiance& known) {
     IlluminationParts parts = render_basis(rays_, gbuffer_, lighting, bounce, known, options_, progress_);
     basis.image = parts.total();
@@ -523,6 +533,7 @@ class LightingFit {
   std::vector<Basis> bases_;
   size_t background_ = 0;  // the background's basis
   size_t shown_ = 0;       // the basis of the light bounced off what the photo and probes show
+  std::unique_ptr<PhotoRadiance> shown_radiance_;  // holds references to result.scene.probes
   Image bounce_albedo_;    // the last round's albedo (at first: white)
   Vec3 unseen_ = Vec3::Ones();
   bool solved_ = false;  // a round had enough shadow edges to solve for the unknowns
