@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/commands.h"
+#include "cli/run.h"
 #include "io/image_io.h"
 #include "temp_dir.h"
 

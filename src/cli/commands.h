@@ -1,5 +1,5 @@
 // The relight command line: one file per subcommand, each registering itself
-// on the CLI11 app; run() parses, dispatches and maps errors to exit codes
+// on the CLI11 app; run() (run.h) parses, dispatches and maps errors to exit codes
 // (0 ok, 1 internal error, 2 bad input).
 #pragma once
 
@@ -99,7 +99,5 @@ RegistrationResult register_and_report(Scene& scene, const RayScene& rays, const
 
 // Options shared by analyze and render.
 void add_sampling_options(CLI::App& cmd, AnalysisOptions& options);
-
-int run(std::span<const std::string> args);
 
 }  // namespace relight::cli

@@ -1,6 +1,6 @@
 #include <string>
 #include <vector>
 
-#include "cli/commands.h"
+#include "cli/run.h"
 
 int main(int argc, char** argv) { return relight::cli::run(std::vector<std::string>(argv, argv + argc)); }
