@@ -264,8 +264,8 @@ TEST(Cli, FarmWritesAJobArrayOfChunksAndChecksItsFrames) {
 
 TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
   const relight::test::TempDir dir("renders");
-  const fs::path room = half_size_room(dir), analysis = dir / "analysis";
-  ASSERT_EQ(relight_run({"analyze", room.string(), "-o", analysis.string(), "--spp", "8", "--save-renders",
+  const fs::path scene = half_size_room(dir), analysis = dir / "analysis";
+  ASSERT_EQ(relight_run({"analyze", scene.string(), "-o", analysis.string(), "--spp", "8", "--save-renders",
                          "--bounce-source", "albedo"}),
             0);
   std::ifstream json(analysis / "analysis.json");
@@ -279,7 +279,7 @@ TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
   EXPECT_FALSE(fs::exists(analysis / ("albedo_render" + std::to_string(renders + 1) + ".exr")));
   // The last render's albedo is the analysis's; the white-diffuse first one
   // of the iteration is far worse on the room's coloured walls.
-  const relight::Image truth = relight::read_image(room.parent_path() / "albedo_gt.exr");
+  const relight::Image truth = relight::read_image(scene.parent_path() / "albedo_gt.exr");
   const auto db = [&](const fs::path& f) { return relight::psnr(relight::clip01(relight::read_image(f)), truth); };
   const fs::path last = analysis / ("albedo_render" + std::to_string(renders) + ".exr");
   std::printf("[ figures  ] half-size room: albedo of the first render %.2f dB, of the last %.2f dB\n",
@@ -290,21 +290,21 @@ TEST(Cli, SaveRendersWritesTheAlbedoOfEveryRender) {
 
 TEST(Cli, RadiosityAnalysisIsRecordedAndRendersFrom) {
   const relight::test::TempDir dir("radiosity");
-  const fs::path room = half_size_room(dir);
-  ASSERT_EQ(relight_run({"analyze", room.string(), "-o", (dir / "analysis").string(), "--method", "radiosity", "--spp",
+  const fs::path scene = half_size_room(dir);
+  ASSERT_EQ(relight_run({"analyze", scene.string(), "-o", (dir / "analysis").string(), "--method", "radiosity", "--spp",
                          "8", "--node-samples", "32", "--gather-rays", "128"}),
             0);
   std::ifstream json(dir / "analysis" / "analysis.json");
   const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"method\": \"radiosity\""), std::string::npos) << text;
   EXPECT_NE(text.find("\"gather_rays\": 128"), std::string::npos) << text;
-  const relight::Image truth = relight::read_image(room.parent_path() / "albedo_gt.exr");
+  const relight::Image truth = relight::read_image(scene.parent_path() / "albedo_gt.exr");
   const double albedo = relight::psnr(relight::clip01(relight::read_image(dir / "analysis" / "albedo.exr")), truth);
   std::printf("[ figures  ] half-size room: radiosity albedo %.2f dB\n", albedo);
   EXPECT_GT(albedo, 25.0);
   // The folder is a valid analysis for later renders.
   EXPECT_EQ(
-      relight_run({"render", room.string(), "--rig", (room.parent_path() / "rigs" / "evening.json").string(),
+      relight_run({"render", scene.string(), "--rig", (scene.parent_path() / "rigs" / "evening.json").string(),
                    "--analysis", (dir / "analysis").string(), "-o", (dir / "evening.exr").string(), "--spp", "4"}),
       0);
   EXPECT_TRUE(fs::exists(dir / "evening.exr"));

@@ -6,7 +6,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <memory>
+#include <optional>
 
 #include "analysis/color_chart.h"
 #include "analysis/photo_radiance.h"
@@ -497,8 +497,7 @@ class LightingFit {
   // The photo's and probes' radiance with the lights as they now are: the
   // probe pixels that show a light are not a wall's radiance.
   void see_the_photo_radiance() {
-    shown_radiance_ = std::make_unique<PhotoRadiance>(scene_.camera, gbuffer_, scene_.photo, result.scene.probes,
-                                                      rays_, result.scene.lights);
+    shown_radiance_.emplace(scene_.camera, gbuffer_, scene_.photo, result.scene.probes, rays_, result.scene.lights);
   }
 
   // The albedo the photo over the illumination fitted so far gives.
@@ -533,7 +532,7 @@ class LightingFit {
   std::vector<Basis> bases_;
   size_t background_ = 0;  // the background's basis
   size_t shown_ = 0;       // the basis of the light bounced off what the photo and probes show
-  std::unique_ptr<PhotoRadiance> shown_radiance_;  // holds references to result.scene.probes
+  std::optional<PhotoRadiance> shown_radiance_;  // holds references to result.scene.probes
   Image bounce_albedo_;    // the last round's albedo (at first: white)
   Vec3 unseen_ = Vec3::Ones();
   bool solved_ = false;  // a round had enough shadow edges to solve for the unknowns
@@ -618,7 +617,7 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
           total.objective_after = placed[k].objective_after;
         }
       }
-      fit.remeasure_emissions();
+      if (moved) fit.remeasure_emissions();  // else as they were measured
       fit.round(options.rounds + 1 + pass);
       fit.check_background_against_probes();
       fit.publish();
