@@ -12,6 +12,11 @@
 #              a soft ceiling panel (area light, 1 x 0.6 m, facing down) and a
 #              warm floor lamp; a black world, so most light has bounced; an
 #              equirect probe. Rig `moved`: the panel 0.64 m across the room.
+#   lamproom   a closed 5 x 3.6 x 2.5 m room, terracotta and pale blue
+#              plaster, a grey tiled floor, a sofa, a side table and a
+#              bookshelf; lit by a square ceiling panel and two weak lamps
+#              (a warm table lamp, a cool reading lamp), each a few pixels
+#              across in a 256 x 128 probe. Rig `dim`: the panel off.
 import os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -55,5 +60,43 @@ def scene_panelroom():
         readme='Own check scene (bench/own_scenes.py): a closed room lit by a soft ceiling panel and a floor lamp.')
 
 
+def scene_lamproom():
+    g = gen
+    terracotta = g['mat_noise']('terracotta', (0.62, 0.36, 0.26), (0.72, 0.44, 0.32), scale=2.5)
+    blue = g['mat_noise']('pale_blue', (0.55, 0.62, 0.70), (0.64, 0.70, 0.78), scale=3.5)
+    tiles = g['mat_brick']('floor_tiles', (0.40, 0.40, 0.42), (0.50, 0.50, 0.52), (0.75, 0.75, 0.72), 2.0, 0.5, 0.5)
+    X, Y, Z = 2.5, 1.8, 2.5
+    quad = g['quad']
+    quad('floor', [(-X, -Y, 0), (X, -Y, 0), (X, Y, 0), (-X, Y, 0)], tiles)
+    quad('ceiling', [(-X, -Y, Z), (-X, Y, Z), (X, Y, Z), (X, -Y, Z)], blue)
+    quad('wall_back', [(-X, Y, 0), (X, Y, 0), (X, Y, Z), (-X, Y, Z)], terracotta)
+    quad('wall_front', [(-X, -Y, 0), (-X, -Y, Z), (X, -Y, Z), (X, -Y, 0)], blue)
+    quad('wall_left', [(-X, -Y, 0), (-X, Y, 0), (-X, Y, Z), (-X, -Y, Z)], blue)
+    quad('wall_right', [(X, -Y, 0), (X, -Y, Z), (X, Y, Z), (X, Y, 0)], terracotta)
+    fabric = g['mat_noise']('sofa', (0.25, 0.35, 0.30), (0.32, 0.44, 0.38), scale=8.0)
+    g['box']('sofa_seat', (2.0, 0.9, 0.45), (0.3, 1.25, 0.0), fabric)
+    g['box']('sofa_back', (2.0, 0.2, 0.85), (0.3, 1.6, 0.0), fabric)
+    wood = g['mat_noise']('walnut', (0.30, 0.18, 0.10), (0.42, 0.27, 0.15), scale=7.0, detail=8.0)
+    g['box']('side_table', (0.5, 0.5, 0.55), (-1.2, 1.3, 0.0), wood)
+    g['box']('bookshelf', (0.4, 1.4, 1.9), (2.2, -0.6, 0.0), wood, rot_z=0.0)
+    shade = g['mat_noise']('pot', (0.80, 0.78, 0.70), (0.88, 0.86, 0.80), scale=4.0)
+    g['cylinder']('pot', 0.14, 0.4, (-0.6, -0.2, 0.0), shade)
+    panel = dict(name='panel', type='area', position=[0.4, 0.0, 2.45], direction=[0.0, 0.0, -1.0],
+                 up=[0.0, 1.0, 0.0], size=[0.8, 0.8], color=[0.95, 0.97, 1.0], power=250.0)
+    table_lamp = dict(name='table_lamp', type='point', position=[-1.2, 1.3, 0.95], color=[1.0, 0.72, 0.45],
+                      power=35.0, radius=0.05)
+    reading = dict(name='reading_lamp', type='point', position=[1.6, 0.9, 1.45], color=[0.85, 0.9, 1.0],
+                   power=30.0, radius=0.07)
+    return dict(
+        camera=dict(position=[-1.9, -1.4, 1.6], look_at=[0.6, 0.9, 0.8], up=[0, 0, 1], vfov_deg=60.0),
+        lights=[panel, table_lamp, reading], world=dict(kind='uniform', color=[0.0, 0.0, 0.0]),
+        background=[0.0, 0.0, 0.0],
+        probes=[dict(mapping='equirect', image='probe_equirect.exr', position=[0.0, -0.6, 1.3],
+                     forward=[0.0, 1.0, 0.0], up=[0.0, 0.0, 1.0])],
+        rigs=dict(dim=dict(environment_scale=1.0, lights=[table_lamp, reading])),
+        readme='Own check scene (bench/own_scenes.py): a closed room lit by a ceiling panel and two weak lamps.')
+
+
 gen['SCENES']['panelroom'] = scene_panelroom
+gen['SCENES']['lamproom'] = scene_lamproom
 gen['main']()

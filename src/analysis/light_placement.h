@@ -17,8 +17,9 @@
 // pixel of the truth), then a narrow one; coordinate search on the lights'
 // positions (point, spot, area) and directions (sun, spot, area), all the
 // lights together: a light still misplaced leaves its fringes in what the
-// others are judged by. The lights move only where the mismatch falls by
-// more than its noise (two standard errors).
+// others are judged by. The lights move only where the placement found
+// matches the photo better by more than its noise (two standard errors),
+// in the shadow mismatch or in the shading across whole planes.
 #pragma once
 
 #include <functional>
