@@ -6,6 +6,7 @@
 #include "analysis/illumination_alignment.h"
 #include "analysis/photo_blur.h"
 #include "analysis/photo_radiance.h"
+#include "analysis/photo_units.h"
 #include "analysis/probe_exposure.h"
 #include "analysis/radiosity_illumination.h"
 #include "analysis/surface_albedo.h"
@@ -204,83 +205,6 @@ float blur_with_edges_met(const Image& photo, const IlluminationImages& illumina
   return std::min(met.sigma_px, blur.sigma_px);
 }
 
-// What brings the photo to the probes' units, from the points it shares
-// with each probe that shows the scene as it does: its vignetting
-// (vignetting.h), unless kept, then its exposure (probe_exposure.h), from
-// the probe that shares the most points with it, where it differs from 1 by
-// more than kExposureTolerance. Nothing of either where no probe shares
-// enough. The probes' units are the lights' wherever the lights were
-// measured from them (`relight fit`) or rendered with them (a Blender scene).
-struct PhotoUnits {
-  std::optional<Vignetting> vignetting;
-  std::optional<Vec3> exposure;
-};
-PhotoUnits photo_units_against_the_probes(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
-                                          bool keep_vignetting) {
-  std::vector<std::vector<SharedPoint>> shared;
-  for (const Probe& probe : scene.probes) shared.push_back(points_shared_with_photo(probe, scene, rays, gbuffer));
-  // Per probe: the photo's exposure against it, where it shows the scene as `photo` does.
-  const auto exposures_of = [&](const Image& photo) {
-    std::vector<std::optional<ProbeExposure>> e;
-    for (size_t p = 0; p < shared.size(); ++p) e.push_back(photo_exposure_from(shared[p], photo, scene.probes[p].path));
-    return e;
-  };
-  const auto any = [](const std::vector<std::optional<ProbeExposure>>& e) {
-    return std::any_of(e.begin(), e.end(), [](const auto& x) { return x.has_value(); });
-  };
-  std::vector<std::optional<ProbeExposure>> exposures = exposures_of(scene.photo);
-  PhotoUnits units;
-  if (!keep_vignetting) {
-    // The probe that shares the most points decides, as for the exposure
-    // (pooled, the bookcase's mirror ball, 10 % brighter at the photo's
-    // corners than its equirect beside it, drew the fit 0.678 for 0.65).
-    // A strong vignetting can make photo / probe vary as much as the photo
-    // does: where no probe shows the scene as the photo does, every probe
-    // that shares enough is a candidate, and the falloff is kept where the
-    // photo without it matches one.
-    const bool matched = any(exposures);
-    std::optional<size_t> decider;
-    for (size_t p = 0; p < shared.size(); ++p)
-      if ((matched ? exposures[p].has_value() : shared[p].size() >= kMinExposurePoints) &&
-          (!decider || shared[p].size() > shared[*decider].size()))
-        decider = p;
-    std::optional<VignettingFit> fit;
-    if (decider) fit = fit_vignetting(shared[*decider], scene.photo);
-    if (fit && is_lens_vignetting(*fit)) {
-      Image devignetted = scene.photo;
-      remove_vignetting(devignetted, fit->falloff);
-      std::vector<std::optional<ProbeExposure>> without = exposures_of(devignetted);
-      if (matched || any(without))
-        exposures = std::move(without);
-      else
-        fit.reset();
-    }
-    if (fit) units.vignetting = photo_vignetting(*fit, scene.path.string());
-  }
-  std::optional<ProbeExposure> best;
-  const Probe* best_probe = nullptr;
-  for (size_t p = 0; p < exposures.size(); ++p)
-    if (exposures[p] && (!best || exposures[p]->points > best->points))
-      best = exposures[p], best_probe = &scene.probes[p];
-  if (!best) {
-    if (!scene.probes.empty())
-      spdlog::info("exposure: no probe shows enough of the photo's surfaces as the photo does to match their "
-                   "exposures; the photo is taken to be in the probes' units");
-    return units;
-  }
-  const Vec3& k = best->photo_over_probe;
-  spdlog::info("exposure: the photo shows the surfaces {:.3f} {:.3f} {:.3f} times as bright as {} does ({} points, "
-               "spread {:.3f}, photo spread {:.3f})",
-               k.x(), k.y(), k.z(), best_probe->path, best->points, best->spread, best->photo_spread);
-  if (!exposure_differs(k)) return units;
-  spdlog::warn("{}: the photo shows the surfaces {:.2f} times as bright as the probe {} does: it is divided by that, "
-               "so the albedo and every re-lit image are in the probe's units and the lights'. `relight fit` brings "
-               "the probe and the lights to the photo's instead",
-               scene.path.string(), luminance(k), best_probe->path);
-  units.exposure = k;
-  return units;
-}
-
 // The renders an analysis by path tracing runs, in order, for the time
 // left of the whole (Progress::plan_job): the direct light, then each render
 // of the bounce light. Their work is counted in rays, roughly (the estimate
@@ -432,6 +356,12 @@ Analysis analyze(const Scene& scene, const RayScene& rays, const GBuffer& gbuffe
   const bool glossy = sees_gloss(gbuffer, scene.gloss);
   Image photo_own;
   const PhotoUnits units = photo_units_against_the_probes(scene, rays, gbuffer, options.keep_vignetting);
+  if (units.exposure)
+    spdlog::warn(
+        "{}: the photo shows the surfaces {:.2f} times as bright as the probe {} does: it is divided by that, "
+        "so the albedo and every re-lit image are in the probe's units and the lights'. `relight fit` brings "
+        "the probe and the lights to the photo's instead",
+        scene.path.string(), luminance(*units.exposure), units.exposure_probe);
   result.photo_vignetting = units.vignetting;
   result.photo_exposure = units.exposure.value_or(Vec3::Ones());
   const bool own = units.vignetting || units.exposure || glossy;

@@ -51,6 +51,9 @@ struct FitOptions {
   int rounds = 4;
   bool refine_placement = false;
   PlacementOptions placement;
+  // Leave the photo's lens vignetting in (photo_units.h); by default it is
+  // divided out while the lights are fitted, as the analysis divides it out.
+  bool keep_vignetting = false;
 };
 
 struct FittedLight {

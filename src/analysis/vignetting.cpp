@@ -133,7 +133,7 @@ std::optional<Vignetting> photo_vignetting(const VignettingFit& fit, const std::
   if (is_lens_vignetting(fit)) {
     spdlog::warn(
         "{}: the photo is {:.0f} % darker at its corners than at its centre against what a probe shows (a lens's "
-        "vignetting): divided out before the analysis (--keep-vignetting leaves it in)",
+        "vignetting): divided out (--keep-vignetting leaves it in)",
         scene_path, 100.0f * (1.0f - corner));
     return fit.falloff;
   }

@@ -208,9 +208,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
                 "analyse through the scene's camera as given; by default a camera whose view of the geometry is "
                 "visibly off the photo's edges (by over 1.5 px) is registered to them first, as `relight register` does, "
                 "and analysis.json keeps it for every render");
-  cmd->add_flag("--keep-vignetting", args->options.keep_vignetting,
-                "leave the photo's vignetting in it; by default a darkening towards its corners that the probes "
-                "show is not the surfaces' (5 % or more, clear of the noise) is divided out first");
+  add_keep_vignetting_flag(*cmd, args->options);
   cmd->add_flag("--sharpen", args->options.sharpen,
                 "undo in the albedo a blur of the photo against the render (a lens, a sensor: found where it makes "
                 "the albedo smoother by its edges) of up to a pixel, regularised so as not to raise the noise, unless "

@@ -33,6 +33,7 @@ void run_fit(const FitArgs& args, Progress& progress) {
   options.seed = args.options.seed;
   options.max_bounces = args.options.max_bounces;
   options.refine_placement = args.refine_placement;
+  options.keep_vignetting = args.options.keep_vignetting;
   const FitResult fit = fit_lighting(s.scene, *s.rays, *s.gbuffer, options, progress);
   const fs::path out = fs::absolute(args.out);
   write_text_atomically(out, scene_to_json(fit.scene, out.parent_path()));
@@ -54,6 +55,7 @@ void add_fit_command(CLI::App& app, Action& action) {
   cmd->add_flag("--register", args->register_camera,
                 "first register the camera to the photo's edges, as relight register does (default limits)");
   add_sampling_options(*cmd, args->options);
+  add_keep_vignetting_flag(*cmd, args->options);
   cmd->footer(help_footer(
       "Lights a probe sees get the power the probe measures; the background and the other lights are fitted so\n"
       "  that the albedo does not change across shadow edges. With --refine-placement, lights up to ~25 cm and\n"

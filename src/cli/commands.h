@@ -98,5 +98,7 @@ RegistrationResult register_and_report(Scene& scene, const RayScene& rays, const
 
 // Options shared by analyze and render.
 void add_sampling_options(CLI::App& cmd, AnalysisOptions& options);
+// --keep-vignetting, shared by analyze and fit.
+void add_keep_vignetting_flag(CLI::App& cmd, AnalysisOptions& options);
 
 }  // namespace relight::cli

@@ -114,6 +114,12 @@ void add_sampling_options(CLI::App& cmd, AnalysisOptions& o) {
       ->capture_default_str();
 }
 
+void add_keep_vignetting_flag(CLI::App& cmd, AnalysisOptions& o) {
+  cmd.add_flag("--keep-vignetting", o.keep_vignetting,
+               "leave the photo's vignetting in it; by default a darkening towards its corners that the probes "
+               "show is not the surfaces' (5 % or more, clear of the noise) is divided out first");
+}
+
 int run(std::span<const std::string> args) {
   CLI::App app{"relight: relight a photograph physically (analyse, then render new lighting)", "relight"};
   app.set_version_flag("--version", "relight " RELIGHT_VERSION);
