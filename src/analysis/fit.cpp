@@ -588,10 +588,11 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
   // whole walls, and a closed room's floor lamp in its true place was moved
   // 32 cm to explain a falloff of 35 %. The fitted scene keeps the photo.
   std::optional<Scene> devignetted;
-  if (const auto v = photo_units_against_the_probes(scene, rays, gbuffer, options.keep_vignetting).vignetting) {
-    devignetted = scene;
-    remove_vignetting(devignetted->photo, *v);
-  }
+  if (!options.keep_vignetting)
+    if (const auto v = photo_units_against_the_probes(scene, rays, gbuffer, false).vignetting) {
+      devignetted = scene;
+      remove_vignetting(devignetted->photo, *v);
+    }
   LightingFit fit(devignetted ? *devignetted : scene, rays, gbuffer, options, progress);
   for (int round = 1; round <= options.rounds; ++round) fit.round(round);
   fit.check_background_against_probes();
