@@ -25,19 +25,23 @@ import scene_generator
 gen = scene_generator.load()
 
 
+def closed_room(X, Y, Z, floor, ceiling, back, front, left, right):
+    """A box room from (-X, -Y, 0) to (X, Y, Z), its six faces facing in."""
+    quad = gen['quad']
+    quad('floor', [(-X, -Y, 0), (X, -Y, 0), (X, Y, 0), (-X, Y, 0)], floor)
+    quad('ceiling', [(-X, -Y, Z), (-X, Y, Z), (X, Y, Z), (X, -Y, Z)], ceiling)
+    quad('wall_back', [(-X, Y, 0), (X, Y, 0), (X, Y, Z), (-X, Y, Z)], back)
+    quad('wall_front', [(-X, -Y, 0), (-X, -Y, Z), (X, -Y, Z), (X, -Y, 0)], front)
+    quad('wall_left', [(-X, -Y, 0), (-X, Y, 0), (-X, Y, Z), (-X, -Y, Z)], left)
+    quad('wall_right', [(X, -Y, 0), (X, -Y, Z), (X, Y, Z), (X, Y, 0)], right)
+
+
 def scene_panelroom():
     g = gen
     sage = g['mat_noise']('sage_plaster', (0.40, 0.48, 0.36), (0.52, 0.60, 0.46), scale=2.2)
     cream = g['mat_noise']('cream_plaster', (0.78, 0.74, 0.62), (0.88, 0.84, 0.72), scale=3.0)
     oak = g['mat_noise']('oak_floor', (0.45, 0.30, 0.16), (0.62, 0.44, 0.26), scale=6.0, detail=8.0)
-    X, Y, Z = 2.0, 1.7, 2.6
-    quad = g['quad']
-    quad('floor', [(-X, -Y, 0), (X, -Y, 0), (X, Y, 0), (-X, Y, 0)], oak)
-    quad('ceiling', [(-X, -Y, Z), (-X, Y, Z), (X, Y, Z), (X, -Y, Z)], cream)
-    quad('wall_back', [(-X, Y, 0), (X, Y, 0), (X, Y, Z), (-X, Y, Z)], sage)
-    quad('wall_front', [(-X, -Y, 0), (-X, -Y, Z), (X, -Y, Z), (X, -Y, 0)], cream)
-    quad('wall_left', [(-X, -Y, 0), (-X, Y, 0), (-X, Y, Z), (-X, -Y, Z)], cream)
-    quad('wall_right', [(X, -Y, 0), (X, -Y, Z), (X, Y, Z), (X, Y, 0)], sage)
+    closed_room(2.0, 1.7, 2.6, oak, cream, sage, cream, cream, sage)
     table = g['mat_noise']('table_top', (0.70, 0.66, 0.60), (0.80, 0.76, 0.70), scale=5.0)
     g['box']('table', (1.1, 0.7, 0.75), (-0.2, 0.6, 0.0), table, rot_z=10.0)
     vase = g['mat_noise']('vase', (0.15, 0.25, 0.55), (0.22, 0.34, 0.66), scale=4.0)
@@ -65,14 +69,7 @@ def scene_lamproom():
     terracotta = g['mat_noise']('terracotta', (0.62, 0.36, 0.26), (0.72, 0.44, 0.32), scale=2.5)
     blue = g['mat_noise']('pale_blue', (0.55, 0.62, 0.70), (0.64, 0.70, 0.78), scale=3.5)
     tiles = g['mat_brick']('floor_tiles', (0.40, 0.40, 0.42), (0.50, 0.50, 0.52), (0.75, 0.75, 0.72), 2.0, 0.5, 0.5)
-    X, Y, Z = 2.5, 1.8, 2.5
-    quad = g['quad']
-    quad('floor', [(-X, -Y, 0), (X, -Y, 0), (X, Y, 0), (-X, Y, 0)], tiles)
-    quad('ceiling', [(-X, -Y, Z), (-X, Y, Z), (X, Y, Z), (X, -Y, Z)], blue)
-    quad('wall_back', [(-X, Y, 0), (X, Y, 0), (X, Y, Z), (-X, Y, Z)], terracotta)
-    quad('wall_front', [(-X, -Y, 0), (-X, -Y, Z), (X, -Y, Z), (X, -Y, 0)], blue)
-    quad('wall_left', [(-X, -Y, 0), (-X, Y, 0), (-X, Y, Z), (-X, -Y, Z)], blue)
-    quad('wall_right', [(X, -Y, 0), (X, -Y, Z), (X, Y, Z), (X, Y, 0)], terracotta)
+    closed_room(2.5, 1.8, 2.5, tiles, blue, terracotta, blue, blue, terracotta)
     fabric = g['mat_noise']('sofa', (0.25, 0.35, 0.30), (0.32, 0.44, 0.38), scale=8.0)
     g['box']('sofa_seat', (2.0, 0.9, 0.45), (0.3, 1.25, 0.0), fabric)
     g['box']('sofa_back', (2.0, 0.2, 0.85), (0.3, 1.6, 0.0), fabric)

@@ -44,8 +44,8 @@ std::vector<Placed> place(const std::vector<Light>& truths, const std::vector<Li
   const Image indirect =
       render_illumination_parts(gbuffer, Integrator(rays, lighting, &albedo), options, Progress::silent()).indirect;
   scene.lights = givens;
-  const std::vector<PlacedLight> placed = refine_light_placement(scene, rays, gbuffer, indirect, own_emission,
-                                                                 sight_line_of, PlacementOptions{}, Progress::silent());
+  const std::vector<PlacedLight> placed = refine_light_placement(
+      scene, scene.photo, rays, gbuffer, indirect, own_emission, sight_line_of, PlacementOptions{}, Progress::silent());
   EXPECT_EQ(placed.size(), truths.size());
 
   std::vector<Placed> result;

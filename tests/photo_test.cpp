@@ -822,7 +822,8 @@ TEST(ProbeExposure, AProbeAtAnotherExposureIsBroughtToThePhotos) {
   options.paths_per_pixel = 4;
   options.strategy = default_strategy(truth);
   const GBuffer gbuffer = scene_gbuffer(truth, rays, options);
-  const auto matched = photo_exposure_against_probe(truth.probes[0], truth, rays, gbuffer);
+  const auto matched = photo_exposure_from(points_shared_with_photo(truth.probes[0], truth, rays, gbuffer), truth.photo,
+                                           truth.probes[0].path);
   ASSERT_TRUE(matched);
   EXPECT_LT((matched->photo_over_probe - Vec3::Ones()).cwiseAbs().maxCoeff(), 0.01f);
 

@@ -233,9 +233,12 @@ std::optional<Vec3> emission_from_sightings(const std::vector<ProbeSighting>& si
 // bounce light's albedo; the result as it stands.
 class LightingFit {
  public:
-  LightingFit(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer, const FitOptions& options,
-              Progress& progress)
+  // `photo`: the scene's, its vignetting divided out where it was found;
+  // `units`: its units against the probes (photo_units.h).
+  LightingFit(const Scene& scene, const Image& photo, const PhotoUnits& units, const RayScene& rays,
+              const GBuffer& gbuffer, const FitOptions& options, Progress& progress)
       : scene_(scene),
+        photo_(photo),
         rays_(rays),
         gbuffer_(gbuffer),
         options_(options),
@@ -243,7 +246,8 @@ class LightingFit {
         bounce_albedo_(gbuffer.width(), gbuffer.height(), Vec3::Ones()) {
     result.scene = scene;
     result.background_before = scene.background;
-    for (Probe& p : result.scene.probes) match_probe_to_photo(p);
+    for (size_t p = 0; p < result.scene.probes.size(); ++p)
+      match_probe_to_photo(result.scene.probes[p], units.probe_exposures[p]);
     for (const Probe& p : result.scene.probes) {
       std::optional<Probe> distant = remove_local_geometry_from_probe(p, rays);
       if (distant) distant_.push_back(*distant);
@@ -304,7 +308,7 @@ class LightingFit {
     const std::vector<PixelPair> pairs = shadow_edge_pairs(gbuffer_, bases_, background_, scene_.photo_clipped);
     result.edge_pairs = pairs.size();
     if (pairs.size() >= kMinEdgePairs) {
-      for (int c = 0; c < 3; ++c) solve_channel(scene_.photo, bases_, pairs, c);
+      for (int c = 0; c < 3; ++c) solve_channel(photo_, bases_, pairs, c);
       solved_ = true;
     }
     const char* fitted_from = solved_ ? "shadows" : "kept: too few shadow edges to fit from";
@@ -398,8 +402,7 @@ class LightingFit {
 
   // The probe brought to the photo's units (probe_exposure.h), so that the
   // lights measured from it and the environment it gives are in them too.
-  void match_probe_to_photo(Probe& probe) const {
-    const auto exposure = photo_exposure_against_probe(probe, scene_, rays_, gbuffer_);
+  static void match_probe_to_photo(Probe& probe, const std::optional<ProbeExposure>& exposure) {
     if (!exposure) {
       spdlog::info("{}: the probe shows too few of the photo's surfaces, or not as the photo does (an environment "
                    "image rather than a probe taken in the scene), to match their exposures; the probe is taken to "
@@ -498,12 +501,12 @@ class LightingFit {
   // The photo's and probes' radiance with the lights as they now are: the
   // probe pixels that show a light are not a wall's radiance.
   void see_the_photo_radiance() {
-    shown_radiance_.emplace(scene_.camera, gbuffer_, scene_.photo, result.scene.probes, rays_, result.scene.lights);
+    shown_radiance_.emplace(scene_.camera, gbuffer_, photo_, result.scene.probes, rays_, result.scene.lights);
   }
 
   // The albedo the photo over the illumination fitted so far gives.
   AlbedoImages fitted_albedo() const {
-    return recover_albedo(scene_.photo, scene_.photo_clipped,
+    return recover_albedo(photo_, scene_.photo_clipped,
                           IlluminationImages{illumination(), Image(gbuffer_.width(), gbuffer_.height())}, gbuffer_);
   }
 
@@ -522,6 +525,7 @@ class LightingFit {
   }
 
   const Scene& scene_;
+  const Image& photo_;  // what the lights are fitted to
   const RayScene& rays_;
   const GBuffer& gbuffer_;
   const FitOptions& options_;
@@ -587,13 +591,11 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
   // analysis divides it: a falloff towards the corners is shading across
   // whole walls, and a closed room's floor lamp in its true place was moved
   // 32 cm to explain a falloff of 35 %. The fitted scene keeps the photo.
-  std::optional<Scene> devignetted;
-  if (!options.keep_vignetting)
-    if (const auto v = photo_units_against_the_probes(scene, rays, gbuffer, false).vignetting) {
-      devignetted = scene;
-      remove_vignetting(devignetted->photo, *v);
-    }
-  LightingFit fit(devignetted ? *devignetted : scene, rays, gbuffer, options, progress);
+  const PhotoUnits units = photo_units_against_the_probes(scene, rays, gbuffer, options.keep_vignetting);
+  std::optional<Image> devignetted;
+  if (units.vignetting) remove_vignetting(devignetted.emplace(scene.photo), *units.vignetting);
+  const Image& photo = devignetted ? *devignetted : scene.photo;
+  LightingFit fit(scene, photo, units, rays, gbuffer, options, progress);
   for (int round = 1; round <= options.rounds; ++round) fit.round(round);
   fit.check_background_against_probes();
   fit.publish();
@@ -613,7 +615,7 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
     const SightLineOf sight_line_of = [&sight_lines](size_t index) { return sight_lines[index]; };
     for (int pass = 0; pass < kPlacementPasses; ++pass) {
       std::vector<PlacedLight> placed =
-          refine_light_placement(fit.result.scene, rays, gbuffer, fit.indirect_illumination(), emission_of,
+          refine_light_placement(fit.result.scene, photo, rays, gbuffer, fit.indirect_illumination(), emission_of,
                                  sight_line_of, options.placement, progress);
       const bool moved = std::any_of(placed.begin(), placed.end(),
                                      [](const PlacedLight& p) { return p.moved_m() > 0.0f || p.turned_deg() > 0.0f; });
@@ -648,7 +650,6 @@ FitResult fit_lighting(const Scene& scene, const RayScene& rays, const GBuffer& 
   fit.apply_reference();
   fit.publish();
   fit.check_albedo_above_one();
-  if (devignetted) fit.result.scene.photo = scene.photo;
   return fit.result;
 }
 

@@ -81,15 +81,16 @@ using SightLineOf = std::function<std::optional<SightLine>(size_t index)>;
 inline std::optional<SightLine> no_sight_line(size_t) { return std::nullopt; }
 
 // Moves (and turns) the enabled lights of `scene` to where their shadows and
-// a spot's cone best match the photo; a light seen along a sight line is
+// a spot's cone best match `photo` (the scene's, as the fit sees it: its
+// vignetting divided out); a light seen along a sight line is
 // moved along it only, from SightLine::start_for where it was given, and
 // one whose distance the line knows is put there and only turned.
 // `indirect`: the illumination (white surfaces) of the scene's lighting as
 // it is, less the light straight from the lights: the environment and the
 // bounce light, held fixed.
-std::vector<PlacedLight> refine_light_placement(Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
-                                                const Image& indirect, const EmissionOfPlaced& emission_of,
-                                                const SightLineOf& sight_line_of, const PlacementOptions& options,
-                                                Progress& progress);
+std::vector<PlacedLight> refine_light_placement(Scene& scene, const Image& photo, const RayScene& rays,
+                                                const GBuffer& gbuffer, const Image& indirect,
+                                                const EmissionOfPlaced& emission_of, const SightLineOf& sight_line_of,
+                                                const PlacementOptions& options, Progress& progress);
 
 }  // namespace relight

@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <vector>
 
-#include "analysis/probe_exposure.h"
-
 namespace relight {
 
 PhotoUnits photo_units_against_the_probes(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
@@ -51,6 +49,7 @@ PhotoUnits photo_units_against_the_probes(const Scene& scene, const RayScene& ra
     }
     if (fit) units.vignetting = photo_vignetting(*fit, scene.path.string());
   }
+  units.probe_exposures = exposures;
   std::optional<ProbeExposure> best;
   const Probe* best_probe = nullptr;
   for (size_t p = 0; p < exposures.size(); ++p)

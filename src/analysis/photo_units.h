@@ -8,7 +8,9 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "analysis/probe_exposure.h"
 #include "analysis/vignetting.h"
 #include "render/gbuffer.h"
 #include "render/ray_scene.h"
@@ -27,6 +29,10 @@ struct PhotoUnits {
   std::optional<Vignetting> vignetting;
   std::optional<Vec3> exposure;  // photo / probe, where it differs from 1
   std::string exposure_probe;    // the probe's file it was measured against
+  // The photo's exposure against each probe (scene.probes' order), once its
+  // vignetting is divided out where it is: nothing where a probe does not
+  // show the scene as the photo does.
+  std::vector<std::optional<ProbeExposure>> probe_exposures;
 };
 PhotoUnits photo_units_against_the_probes(const Scene& scene, const RayScene& rays, const GBuffer& gbuffer,
                                           bool keep_vignetting);

@@ -107,9 +107,4 @@ std::optional<ProbeExposure> photo_exposure_from(const std::vector<SharedPoint>&
   return exposure;
 }
 
-std::optional<ProbeExposure> photo_exposure_against_probe(const Probe& probe, const Scene& scene, const RayScene& rays,
-                                                          const GBuffer& gbuffer) {
-  return photo_exposure_from(points_shared_with_photo(probe, scene, rays, gbuffer), scene.photo, probe.path);
-}
-
 }  // namespace relight

@@ -72,14 +72,10 @@ std::vector<SharedPoint> points_shared_with_photo(const Probe& probe, const Scen
                                                   const GBuffer& gbuffer);
 
 // The exposure of `photo` against the probe named `probe_name` over the
-// points they share (as below).
+// points they share (points_shared_with_photo). Nothing where they share
+// fewer than kMinExposurePoints surface points, or the probe does not show
+// them as the photo does (kMaxUnexplainedSpread).
 std::optional<ProbeExposure> photo_exposure_from(const std::vector<SharedPoint>& shared, const Image& photo,
                                                  const std::string& probe_name);
-
-// Nothing where the probe and the photo share fewer than kMinExposurePoints
-// surface points, or the probe does not show them as the photo does
-// (kMaxUnexplainedSpread).
-std::optional<ProbeExposure> photo_exposure_against_probe(const Probe& probe, const Scene& scene,
-                                                          const RayScene& rays, const GBuffer& gbuffer);
 
 }  // namespace relight
